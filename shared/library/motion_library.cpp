@@ -1,0 +1,1 @@
+#include "library/motion_library.hpp"

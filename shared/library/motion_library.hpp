@@ -1,0 +1,2 @@
+#pragma once
+#include "graph/motion_graph.hpp"

@@ -1,0 +1,32 @@
+#include "world/body_volume.hpp"
+
+#include <algorithm>
+
+namespace foresight {
+
+BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, float margin_m,
+                                 float head_top_m) {
+  BodyVolume v;
+  if (joint_pos_m.empty()) return v;
+  // Centre of the ground-plane bounding box; the disc covers every joint from there.
+  vec2 lo = ground(joint_pos_m[0]), hi = lo;
+  float y_lo = joint_pos_m[0].y, y_hi = y_lo;
+  for (const vec3& p : joint_pos_m) {
+    lo = glm::min(lo, ground(p));
+    hi = glm::max(hi, ground(p));
+    y_lo = std::min(y_lo, p.y);
+    y_hi = std::max(y_hi, p.y);
+  }
+  v.center_m = 0.5f * (lo + hi);
+  float r2 = 0.0f;
+  for (const vec3& p : joint_pos_m) {
+    const vec2 d = ground(p) - v.center_m;
+    r2 = std::max(r2, glm::dot(d, d));
+  }
+  v.radius_m = std::sqrt(r2) + margin_m;
+  v.y_min_m = y_lo;
+  v.y_max_m = y_hi + head_top_m;
+  return v;
+}
+
+}  // namespace foresight
