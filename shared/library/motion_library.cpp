@@ -1,1 +1,197 @@
 #include "library/motion_library.hpp"
+
+#include "anim/fk.hpp"
+#include "anim/root_motion.hpp"
+
+#include <xxhash.h>
+
+#include <cassert>
+#include <type_traits>
+
+namespace foresight {
+namespace {
+
+// Hash of everything that decides what a client would rebuild from (segment, frame, placement):
+// skeleton, clip arrays, graph. Compiled data is derived from these, so it is not hashed.
+class Hasher {
+ public:
+  Hasher() : state_(XXH3_createState()) { XXH3_64bits_reset(state_); }
+  ~Hasher() { XXH3_freeState(state_); }
+  Hasher(const Hasher&) = delete;
+  Hasher& operator=(const Hasher&) = delete;
+
+  template <typename T>
+  void add(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    XXH3_64bits_update(state_, &value, sizeof(T));
+  }
+  template <typename T>
+  void add_array(const std::vector<T>& values) {
+    add(values.size());
+    if (!values.empty()) XXH3_64bits_update(state_, values.data(), values.size() * sizeof(T));
+  }
+  void add_string(const std::string& s) {
+    add(s.size());
+    XXH3_64bits_update(state_, s.data(), s.size());
+  }
+  uint64_t digest() const { return XXH3_64bits_digest(state_); }
+
+ private:
+  XXH3_state_t* state_;
+};
+
+uint64_t content_hash_of(const MotionLibrary& lib) {
+  Hasher h;
+  for (const std::string& n : lib.skeleton.joint_names) h.add_string(n);
+  h.add_array(lib.skeleton.parents);
+  h.add_array(lib.skeleton.rest_offsets_m);
+  for (const Clip& c : lib.clips) {
+    h.add_string(c.name);
+    h.add(c.fps);
+    h.add(c.num_frames);
+    h.add_array(c.local_pos_m);
+    h.add_array(c.local_rot);
+  }
+  h.add_array(lib.clip_tags);
+  for (const Segment& s : lib.graph.segments) {
+    h.add_string(s.name);
+    h.add(s.clip);
+    h.add(s.first_frame);
+    h.add(s.end_frame);
+    h.add(s.tags);
+  }
+  for (const Transition& t : lib.graph.transitions) {
+    h.add(t.from);
+    h.add(t.to);
+    h.add(t.blend_frames);
+  }
+  return h.digest();
+}
+
+bool validate(const MotionLibrary& lib, std::string& error) {
+  const int n = lib.skeleton.num_joints();
+  if (!lib.skeleton.valid()) return error = lib.name + ": invalid skeleton", false;
+  if (lib.clip_tags.size() != lib.clips.size())
+    return error = lib.name + ": clip_tags has " + std::to_string(lib.clip_tags.size()) +
+                   " entries for " + std::to_string(lib.clips.size()) + " clips",
+           false;
+  for (const Clip& c : lib.clips) {
+    const size_t expected = static_cast<size_t>(c.num_frames) * static_cast<size_t>(n);
+    if (c.num_joints != n || c.local_pos_m.size() != expected || c.local_rot.size() != expected)
+      return error = lib.name + ": clip '" + c.name + "' does not match the skeleton", false;
+    if (c.num_frames < 2) return error = lib.name + ": clip '" + c.name + "' has < 2 frames", false;
+  }
+  const int num_segments = lib.graph.num_segments();
+  if (lib.graph.first_transition.size() != static_cast<size_t>(num_segments) + 1)
+    return error = lib.name + ": graph not finalized", false;
+  for (const Segment& s : lib.graph.segments) {
+    if (s.clip < 0 || s.clip >= static_cast<int>(lib.clips.size()))
+      return error = lib.name + ": segment '" + s.name + "' names clip " + std::to_string(s.clip),
+             false;
+    // end_frame is the boundary pose, so it must exist in the clip.
+    if (s.first_frame < 0 || s.end_frame <= s.first_frame || s.end_frame >= lib.clips[s.clip].num_frames)
+      return error = lib.name + ": segment '" + s.name + "' frame range [" +
+                     std::to_string(s.first_frame) + ", " + std::to_string(s.end_frame) +
+                     "] outside its clip",
+             false;
+  }
+  for (const Transition& t : lib.graph.transitions)
+    if (t.from < 0 || t.from >= num_segments || t.to < 0 || t.to >= num_segments || t.blend_frames < 0)
+      return error = lib.name + ": transition " + std::to_string(t.from) + " -> " +
+                     std::to_string(t.to) + " is invalid",
+             false;
+  return true;
+}
+
+}  // namespace
+
+int MotionLibrary::find_transition(int from, int to) const {
+  const auto succ = graph.successors(from);
+  for (size_t i = 0; i < succ.size(); ++i)
+    if (succ[i].to == to) return graph.first_transition[from] + static_cast<int>(i);
+  return -1;
+}
+
+bool motion_library_compile(MotionLibrary& lib, std::string& error) {
+  if (!validate(lib, error)) return false;
+  const int n = lib.num_joints();
+
+  // Root tracks per clip.
+  lib.clip_forward_axis.clear();
+  lib.clip_track_offset.clear();
+  lib.root_track.clear();
+  std::vector<Placement> track;
+  for (const Clip& c : lib.clips) {
+    const vec3 axis = find_forward_axis(lib.skeleton, c);
+    extract_root_track(c, axis, track);
+    lib.clip_forward_axis.push_back(axis);
+    lib.clip_track_offset.push_back(static_cast<int>(lib.root_track.size()));
+    lib.root_track.insert(lib.root_track.end(), track.begin(), track.end());
+  }
+
+  // Per segment: relative movement and body volumes in the segment's own frame.
+  lib.segment_motion.clear();
+  lib.segment_volume_offset.assign(1, 0);
+  lib.segment_volumes.clear();
+  std::vector<vec3> global(static_cast<size_t>(n));
+  std::vector<quat> global_rot(static_cast<size_t>(n));
+  for (const Segment& s : lib.graph.segments) {
+    const Clip& clip = lib.clips[s.clip];
+    const Placement start = lib.root_placement(s.clip, s.first_frame);
+    const Placement to_local = start.inverse();
+    lib.segment_motion.push_back({start, to_local.compose(lib.root_placement(s.clip, s.end_frame))});
+    for (int f = s.first_frame; f <= s.end_frame; ++f) {
+      fk_pose(lib.skeleton, clip.frame_pos(f), clip.frame_rot(f), global, global_rot);
+      for (vec3& p : global) p = to_local.apply(p);
+      lib.segment_volumes.push_back(body_volume_from_pose(global));
+    }
+    lib.segment_volume_offset.push_back(static_cast<int>(lib.segment_volumes.size()));
+  }
+
+  // Per transition: the blend offset from the successor's first pose to the predecessor's end.
+  lib.transition_offset_pos_m.resize(lib.graph.transitions.size() * static_cast<size_t>(n));
+  lib.transition_offset_rot.resize(lib.graph.transitions.size() * static_cast<size_t>(n));
+  PoseOffset offset;
+  for (size_t t = 0; t < lib.graph.transitions.size(); ++t) {
+    const Segment& a = lib.graph.segments[lib.graph.transitions[t].from];
+    const Segment& b = lib.graph.segments[lib.graph.transitions[t].to];
+    pose_offset_between(lib.clips[a.clip], a.end_frame, lib.root_placement(a.clip, a.end_frame),
+                        lib.clips[b.clip], b.first_frame, lib.root_placement(b.clip, b.first_frame),
+                        offset);
+    std::copy(offset.pos_m.begin(), offset.pos_m.end(), lib.transition_offset_pos_m.begin() + t * n);
+    std::copy(offset.rot.begin(), offset.rot.end(), lib.transition_offset_rot.begin() + t * n);
+  }
+
+  lib.content_hash = content_hash_of(lib);
+  return true;
+}
+
+Placement motion_library_root_at(const MotionLibrary& lib, int segment, int frame,
+                                 const Placement& segment_start) {
+  const Segment& s = lib.graph.segments[segment];
+  const Placement local = lib.segment_motion[segment].start.inverse().compose(
+      lib.root_placement(s.clip, s.first_frame + frame));
+  return segment_start.compose(local);
+}
+
+void motion_library_sample(const MotionLibrary& lib, int segment, int frame,
+                           const Placement& segment_start, int incoming_transition, Pose& out) {
+  const Segment& s = lib.graph.segments[segment];
+  assert(frame >= 0 && frame <= s.num_frames());
+  const int clip_frame = s.first_frame + frame;
+  const Placement from = lib.root_placement(s.clip, clip_frame);
+  const Placement to = motion_library_root_at(lib, segment, frame, segment_start);
+  pose_from_clip(lib.clips[s.clip], clip_frame, from, to, out);
+  if (incoming_transition < 0) return;
+  const Transition& t = lib.graph.transitions[incoming_transition];
+  assert(t.to == segment);
+  const float w = blend_out_weight(frame, t.blend_frames);
+  if (w <= 0.0f) return;
+  // The offset lives in the compiled arrays; view it without copying.
+  const size_t n = static_cast<size_t>(lib.num_joints());
+  const PoseOffsetView view{{lib.transition_offset_pos_m.data() + incoming_transition * n, n},
+                            {lib.transition_offset_rot.data() + incoming_transition * n, n}};
+  pose_apply_offset(view, w, to, out);
+}
+
+}  // namespace foresight

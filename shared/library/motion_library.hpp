@@ -1,2 +1,77 @@
 #pragma once
+// The compiled motion library: clips, motion graph, and everything the tick needs precomputed per
+// segment (root placements, relative movement, body volumes, transition blend offsets). Built once
+// at start-up (offline half), then shared read-only by server, client and bots (runtime half).
+// Its content hash identifies it on the wire: a client whose library differs is refused.
+#include "anim/pose.hpp"
 #include "graph/motion_graph.hpp"
+#include "world/body_volume.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace foresight {
+
+/// Where a segment starts and how it moves the avatar.
+struct SegmentMotion {
+  Placement start;  ///< Root placement of the segment's first frame, clip space.
+  /// Placement of the end frame relative to `start`: the paper's relative movement r is
+  /// `end.pos_m` (metres, in the segment's own frame: +Z forward, +X left); the heading change is
+  /// `end.heading_rad`.
+  Placement end;
+};
+
+struct MotionLibrary {
+  // Source data (filled by a builder, then motion_library_compile()).
+  std::string name;
+  Skeleton skeleton;
+  std::vector<Clip> clips;
+  std::vector<uint32_t> clip_tags;  ///< SegmentTag bits per clip.
+  MotionGraph graph;
+
+  // Compiled data.
+  std::vector<vec3> clip_forward_axis;   ///< Pelvis-local forward axis per clip.
+  std::vector<int> clip_track_offset;    ///< Start of each clip's frames in root_track.
+  std::vector<Placement> root_track;     ///< Root placement per clip frame, clip space.
+  std::vector<SegmentMotion> segment_motion;
+  std::vector<int> segment_volume_offset;  ///< num_segments + 1 offsets into segment_volumes.
+  /// Body volume of frames [first_frame, end_frame] (end inclusive) of each segment, in the
+  /// segment's own frame (its start placement is the origin facing +Z).
+  std::vector<BodyVolume> segment_volumes;
+  /// Per transition, the offset that carries the successor's first pose onto the predecessor's end
+  /// pose: [transition * num_joints + joint].
+  std::vector<vec3> transition_offset_pos_m;
+  std::vector<quat> transition_offset_rot;
+  uint64_t content_hash = 0;
+
+  int num_joints() const { return skeleton.num_joints(); }
+  Placement root_placement(int clip, int frame) const {
+    return root_track[static_cast<size_t>(clip_track_offset[clip] + frame)];
+  }
+  std::span<const BodyVolume> volumes(int segment) const {
+    return {segment_volumes.data() + segment_volume_offset[segment],
+            static_cast<size_t>(segment_volume_offset[segment + 1] - segment_volume_offset[segment])};
+  }
+  /// Index of a transition from -> to, or -1.
+  int find_transition(int from, int to) const;
+};
+
+/// Checks the source data and computes the compiled data and the content hash.
+/// Returns false with a reason when clips and skeleton disagree, a segment's frame range is
+/// outside its clip, or a transition names a missing segment.
+bool motion_library_compile(MotionLibrary& library, std::string& error);
+
+/// The pose of `frame` (0-based, within [0, num_frames]) of `segment`, whose start is placed at
+/// `segment_start` in the world. `incoming_transition` (or -1) is the transition the segment was
+/// entered by: its offset is blended out over the transition's blend frames.
+/// Pelvis in world space, other joints parent-relative. No allocation once `out` is sized.
+void motion_library_sample(const MotionLibrary& library, int segment, int frame,
+                           const Placement& segment_start, int incoming_transition, Pose& out);
+
+/// World placement of the root at `frame` of a segment placed at `segment_start`.
+Placement motion_library_root_at(const MotionLibrary& library, int segment, int frame,
+                                 const Placement& segment_start);
+
+}  // namespace foresight

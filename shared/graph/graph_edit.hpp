@@ -1,0 +1,17 @@
+#pragma once
+// Whole-graph operations shared by the builders.
+#include "graph/motion_graph.hpp"
+
+#include <vector>
+
+namespace foresight {
+
+/// Segments of the largest strongly connected component (ascending). Segments outside it are dead
+/// ends or unreachable: an avatar entering them could get stuck, so Kovar et al. prune them.
+std::vector<int> largest_strongly_connected_component(const MotionGraph& graph);
+
+/// The graph restricted to `keep` (ascending segment indices), reindexed, transitions between kept
+/// segments only. finalize() is called on the result.
+MotionGraph graph_keep_segments(const MotionGraph& graph, const std::vector<int>& keep);
+
+}  // namespace foresight
