@@ -1,7 +1,7 @@
 #pragma once
 // A skeleton as flat arrays in depth-first order: parents[i] < i, so forward kinematics is one
 // loop running forwards (ozz's layout). Joint 0 is the root (the pelvis once a clip is
-// normalised: see bvh_to_clip.hpp).
+// normalised: see bvh_import.hpp).
 #include "math/types.hpp"
 
 #include <cstdint>
