@@ -1,0 +1,35 @@
+#pragma once
+// Subcommands of foresight-bench. Each prints the machine it ran on, its figures, and with `json`
+// one JSON object as its last line. Returns the process exit code.
+#include <string>
+#include <vector>
+
+namespace foresight::bench {
+
+struct CollisionBenchOptions {
+  std::string scene = "maze";
+  double seconds = 3.0;
+  unsigned long long seed = 1;
+  std::string motions;  ///< Empty: the default library.
+  bool json = false;
+};
+int bench_collision(const CollisionBenchOptions& options);
+
+struct BvhBenchOptions {
+  std::string file;  ///< Empty: the largest .bvh under ../shared/mocap.
+  int runs = 20;
+  bool json = false;
+};
+int bench_bvh(const BvhBenchOptions& options);
+
+struct GraphBenchOptions {
+  std::string motions;  ///< Folder of BVH clips.
+  int runs = 3;
+  bool json = false;
+};
+int bench_graph(const GraphBenchOptions& options);
+
+/// Median of a list of samples (the list is reordered).
+double median(std::vector<double>& samples);
+
+}  // namespace foresight::bench

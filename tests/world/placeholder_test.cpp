@@ -1,3 +1,0 @@
-#include <gtest/gtest.h>
-// Replaced by the real tests of shared/world as they land.
-TEST(Placeholder_world, Builds) { SUCCEED(); }
