@@ -131,8 +131,8 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
 
   // Per segment: relative movement and body volumes in the segment's own frame.
   lib.segment_motion.clear();
-  lib.segment_volume_offset.assign(1, 0);
-  lib.segment_volumes.clear();
+  lib.segment_shapes.clear();
+  std::vector<BodyVolume> volumes;
   std::vector<vec3> global(static_cast<size_t>(n));
   std::vector<quat> global_rot(static_cast<size_t>(n));
   for (const Segment& s : lib.graph.segments) {
@@ -140,12 +140,13 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
     const Placement start = lib.root_placement(s.clip, s.first_frame);
     const Placement to_local = start.inverse();
     lib.segment_motion.push_back({start, to_local.compose(lib.root_placement(s.clip, s.end_frame))});
+    volumes.clear();
     for (int f = s.first_frame; f <= s.end_frame; ++f) {
       fk_pose(lib.skeleton, clip.frame_pos(f), clip.frame_rot(f), global, global_rot);
       for (vec3& p : global) p = to_local.apply(p);
-      lib.segment_volumes.push_back(body_volume_from_pose(global));
+      volumes.push_back(body_volume_from_pose(global));
     }
-    lib.segment_volume_offset.push_back(static_cast<int>(lib.segment_volumes.size()));
+    lib.segment_shapes.push_back(make_segment_shape(volumes));
   }
 
   // Per transition: the blend offset from the successor's first pose to the predecessor's end.

@@ -6,6 +6,7 @@
 #include "anim/pose.hpp"
 #include "graph/motion_graph.hpp"
 #include "world/body_volume.hpp"
+#include "world/segment_shape.hpp"
 
 #include <cstdint>
 #include <span>
@@ -36,10 +37,10 @@ struct MotionLibrary {
   std::vector<int> clip_track_offset;    ///< Start of each clip's frames in root_track.
   std::vector<Placement> root_track;     ///< Root placement per clip frame, clip space.
   std::vector<SegmentMotion> segment_motion;
-  std::vector<int> segment_volume_offset;  ///< num_segments + 1 offsets into segment_volumes.
-  /// Body volume of frames [first_frame, end_frame] (end inclusive) of each segment, in the
-  /// segment's own frame (its start placement is the origin facing +Z).
-  std::vector<BodyVolume> segment_volumes;
+  /// Per segment: body volumes of frames [first_frame, end_frame] (end inclusive), in the
+  /// segment's own frame (its start placement is the origin facing +Z), ready for
+  /// segment_feasible().
+  std::vector<SegmentCollisionShape> segment_shapes;
   /// Per transition, the offset that carries the successor's first pose onto the predecessor's end
   /// pose: [transition * num_joints + joint].
   std::vector<vec3> transition_offset_pos_m;
@@ -50,10 +51,7 @@ struct MotionLibrary {
   Placement root_placement(int clip, int frame) const {
     return root_track[static_cast<size_t>(clip_track_offset[clip] + frame)];
   }
-  std::span<const BodyVolume> volumes(int segment) const {
-    return {segment_volumes.data() + segment_volume_offset[segment],
-            static_cast<size_t>(segment_volume_offset[segment + 1] - segment_volume_offset[segment])};
-  }
+  std::span<const BodyVolume> volumes(int segment) const { return segment_shapes[segment].frames; }
   /// Index of a transition from -> to, or -1.
   int find_transition(int from, int to) const;
 };

@@ -1,0 +1,25 @@
+#pragma once
+// Subcommands of foresight-motion. Each returns the process exit code.
+#include "library/library_source.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace foresight::tools {
+
+struct PlayOptions {
+  std::string scene = "maze";  ///< Built-in scene name or a path to a scene .json file.
+  double seconds = 30.0;
+  uint64_t seed = 1;
+  bool verbose = false;  ///< Also print every frame's root placement.
+};
+
+int command_info(const MotionSource& source);
+int command_graph(const MotionSource& source);
+int command_export_bvh(const MotionSource& source, const std::string& out_dir);
+int command_play(const MotionSource& source, const PlayOptions& options);
+
+/// Loads the library or prints why not (false).
+bool load_library_or_report(const MotionSource& source, MotionLibrary& lib);
+
+}  // namespace foresight::tools

@@ -1,0 +1,41 @@
+// foresight-motion: inspect, export and play motion libraries.
+//   foresight-motion info  [--motions DIR]
+//   foresight-motion graph  --motions DIR [--threshold M]
+//   foresight-motion export-bvh OUT_DIR [--motions DIR]
+//   foresight-motion play [--scene maze] [--seconds 30] [--seed 1] [--motions DIR]
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+
+int main(int argc, char** argv) {
+  using namespace foresight;
+  CLI::App app{"foresight-motion: inspect, export and play Foresight motion libraries"};
+  app.require_subcommand(1);
+  app.fallthrough();  // --motions and --threshold may follow the subcommand
+  MotionSource source;
+  std::string motions;
+  app.add_option("--motions", motions,
+                 "Folder of BVH clips to use instead of the built-in default library")
+      ->check(CLI::ExistingDirectory);
+  app.add_option("--threshold", source.graph.threshold_rms_m,
+                 "Automatic graph: max RMS point distance of a transition, metres");
+
+  auto* info = app.add_subcommand("info", "Clips, segments, transitions and content hash");
+  auto* graph = app.add_subcommand("graph", "Build the automatic graph and report nodes/edges");
+  std::string out_dir;
+  auto* export_bvh = app.add_subcommand("export-bvh", "Write every clip as a BVH file");
+  export_bvh->add_option("out_dir", out_dir, "Output folder")->required();
+  tools::PlayOptions play_options;
+  auto* play = app.add_subcommand("play", "Play an avatar through the graph in a scene, headless");
+  play->add_option("--scene", play_options.scene, "Built-in scene name or scene .json path");
+  play->add_option("--seconds", play_options.seconds, "Simulated seconds")->check(CLI::Range(0.0, 36000.0));
+  play->add_option("--seed", play_options.seed, "Seed of the successor choice");
+  play->add_flag("--verbose", play_options.verbose, "Print every frame");
+
+  CLI11_PARSE(app, argc, argv);
+  source.motions_dir = motions;
+  if (*info) return tools::command_info(source);
+  if (*graph) return tools::command_graph(source);
+  if (*export_bvh) return tools::command_export_bvh(source, out_dir);
+  return tools::command_play(source, play_options);
+}
