@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <map>
+
 int main(int argc, char** argv) {
   using namespace foresight;
   CLI::App app{"foresight-motion: inspect, export and play Foresight motion libraries"};
@@ -19,6 +21,16 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   app.add_option("--threshold", source.graph.threshold_rms_m,
                  "Automatic graph: max RMS point distance of a transition, metres");
+  const std::map<std::string, LengthUnit> units{{"auto", LengthUnit::kAuto},
+                                                {"m", LengthUnit::kMetres},
+                                                {"cm", LengthUnit::kCentimetres},
+                                                {"in", LengthUnit::kInches}};
+  const std::map<std::string, UpAxis> ups{{"auto", UpAxis::kAuto}, {"y", UpAxis::kYUp},
+                                          {"z", UpAxis::kZUp}, {"x", UpAxis::kXUp}};
+  app.add_option("--bvh-units", source.import.unit, "Length unit of the BVH files (default: detected)")
+      ->transform(CLI::CheckedTransformer(units, CLI::ignore_case));
+  app.add_option("--bvh-up", source.import.up, "Up axis of the BVH files (default: detected)")
+      ->transform(CLI::CheckedTransformer(ups, CLI::ignore_case));
 
   auto* info = app.add_subcommand("info", "Clips, segments, transitions and content hash");
   auto* graph = app.add_subcommand("graph", "Build the automatic graph and report nodes/edges");
