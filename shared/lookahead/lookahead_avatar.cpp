@@ -1,0 +1,72 @@
+#include "lookahead/lookahead_avatar.hpp"
+
+namespace foresight {
+
+int find_fallback_segment(const MotionLibrary& library) {
+  int best = -1;
+  float best_move = 0.0f;
+  for (int s = 0; s < library.graph.num_segments(); ++s) {
+    const uint32_t tags = library.graph.segments[s].tags;
+    if (!(tags & kTagIdle) || (tags & (kTagCrouch | kTagFight))) continue;
+    const float move = glm::length(library.segment_motion[s].end.pos_m);
+    if (best < 0 || move < best_move) best = s, best_move = move;
+  }
+  return best;
+}
+
+LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world,
+                                 MotionTreeConfig config, int start_segment, const Placement& start)
+    : library_(library),
+      world_(world),
+      tree_(library, world, std::move(config)),
+      playback_{start_segment, 0, start, -1},
+      fallback_segment_(find_fallback_segment(library)) {
+  tree_.reset(start_segment, start);
+}
+
+void LookaheadAvatar::set_input(const ControlInput& input) {
+  if (control_input_valid(input)) {
+    input_ = input;
+  } else {
+    input_ = ControlInput{};  // a broken command stops the avatar rather than steering it anywhere
+    ++rejected_inputs_;
+  }
+  tree_.set_command(control_world_direction(input_), root().pos_m);
+}
+
+GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(budget); }
+
+AvatarStepResult LookaheadAvatar::step() {
+  AvatarStepResult result;
+  ++playback_.frame;
+  if (!playback_at_end(library_, playback_)) return result;
+
+  result.segment_changed = true;
+  const int child = tree_.select_child();
+  // The naive baseline kept children unchecked: it finds out only now, and stops.
+  const bool child_free =
+      child >= 0 && (tree_.config().check_collisions ||
+                     segment_feasible(world_, library_.segment_shapes[tree_.node(child).segment],
+                                      tree_.node(child).start));
+  if (child_free) {
+    result.transition = tree_.advance_root(child);
+    playback_take(library_, playback_, result.transition);
+    return result;
+  }
+  // Nothing feasible ahead: idle where the segment ends, if that is free; else hold the last
+  // frame and look again from the same root next frame.
+  result.fallback = true;
+  ++fallbacks_;
+  const Placement here = playback_next_start(library_, playback_);
+  if (fallback_segment_ >= 0 &&
+      segment_feasible(world_, library_.segment_shapes[fallback_segment_], here)) {
+    playback_ = {fallback_segment_, 0, here, -1};
+    tree_.reset(fallback_segment_, here);
+  } else {
+    playback_.frame = library_.graph.segments[playback_.segment].num_frames() - 1;
+    tree_.reset(playback_.segment, playback_.segment_start, playback_.incoming_transition);
+  }
+  return result;
+}
+
+}  // namespace foresight

@@ -1,0 +1,57 @@
+#pragma once
+// An avatar driven by the feasible motion tree: playback of the current segment, the tree that
+// looks ahead from it, and the player's input. Per frame the owner calls, in this order:
+//   set_input(...)   the player's command (camera space), validated
+//   grow(budget)     spend spare time growing the tree
+//   step()           play one frame; at a segment end take the tree's best child
+// When the tree has no feasible child at a segment end, the avatar falls back to the library's
+// idle segment placed where it stands (if that is collision-free), else holds its last pose: it
+// never moves into an obstacle.
+#include "library/playback.hpp"
+#include "lookahead/control_input.hpp"
+#include "lookahead/motion_tree.hpp"
+
+namespace foresight {
+
+struct AvatarStepResult {
+  bool segment_changed = false;  ///< A new segment started this frame.
+  bool fallback = false;         ///< ... because nothing feasible was found (idle or hold).
+  int transition = -1;           ///< Graph transition taken, -1 for a fallback.
+};
+
+class LookaheadAvatar {
+ public:
+  /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
+  LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,
+                  int start_segment, const Placement& start);
+
+  /// Non-finite or over-long directions are refused: the input becomes "stop" and is counted.
+  void set_input(const ControlInput& input);
+  GrowResult grow(const GrowBudget& budget);
+  AvatarStepResult step();
+
+  const PlaybackState& playback() const { return playback_; }
+  Placement root() const { return playback_root(library_, playback_); }
+  const MotionTree& tree() const { return tree_; }
+  MotionTree& tree() { return tree_; }
+  const ControlInput& input() const { return input_; }
+  int fallbacks() const { return fallbacks_; }
+  int rejected_inputs() const { return rejected_inputs_; }
+  /// The segment used when nothing feasible is found (-1 if the library has no idle segment).
+  int fallback_segment() const { return fallback_segment_; }
+
+ private:
+  const MotionLibrary& library_;
+  const CollisionWorld& world_;
+  MotionTree tree_;
+  PlaybackState playback_;
+  ControlInput input_;
+  int fallback_segment_ = -1;
+  int fallbacks_ = 0;
+  int rejected_inputs_ = 0;
+};
+
+/// The idle segment a library falls back to: tagged idle (not crouch, not fight), moving least.
+int find_fallback_segment(const MotionLibrary& library);
+
+}  // namespace foresight

@@ -1,0 +1,250 @@
+#include "lookahead/motion_tree.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+namespace foresight {
+
+MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world,
+                       MotionTreeConfig config)
+    : library_(library), world_(world), config_(std::move(config)) {
+  config_.max_nodes = std::max(config_.max_nodes, 2);
+  config_.max_depth = std::clamp(config_.max_depth, 1, 65535);
+  nodes_.resize(static_cast<size_t>(config_.max_nodes));
+  order_.resize(static_cast<size_t>(config_.max_nodes));
+  queue_.reserve(static_cast<size_t>(config_.max_nodes));
+  visit_stack_.reserve(static_cast<size_t>(config_.max_nodes));
+  reset(0, Placement{});
+}
+
+void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
+  for (int i = 0; i < config_.max_nodes; ++i)
+    nodes_[static_cast<size_t>(i)].next_sibling = i + 1 < config_.max_nodes ? i + 1 : -1;
+  free_head_ = 0;
+  num_nodes_ = 0;
+  next_order_ = 0;
+  queue_.clear();
+  root_ = allocate();
+  MotionTreeNode& r = nodes_[static_cast<size_t>(root_)];
+  r.start = start;
+  r.end_pos_m = start.compose(library_.segment_motion[segment].end).pos_m;
+  r.segment = segment;
+  r.transition = incoming_transition;
+  r.grow_priority = 1.0f;
+  r.match = 1.0f;
+  queue_.push_back({r.grow_priority, order_[static_cast<size_t>(root_)], root_});
+}
+
+int MotionTree::allocate() {
+  assert(free_head_ >= 0);
+  const int i = free_head_;
+  MotionTreeNode& n = nodes_[static_cast<size_t>(i)];
+  free_head_ = n.next_sibling;
+  n = MotionTreeNode{};
+  order_[static_cast<size_t>(i)] = next_order_++;
+  ++num_nodes_;
+  return i;
+}
+
+void MotionTree::free_subtree(int index) {
+  // Iterative: a long chain must not recurse once per node.
+  visit_stack_.clear();
+  visit_stack_.push_back(index);
+  while (!visit_stack_.empty()) {
+    const int n = visit_stack_.back();
+    visit_stack_.pop_back();
+    MotionTreeNode& node = nodes_[static_cast<size_t>(n)];
+    for (int c = node.first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
+      visit_stack_.push_back(c);
+    node.segment = -1;
+    node.next_sibling = free_head_;
+    free_head_ = n;
+    --num_nodes_;
+  }
+}
+
+// Command matching (4.2): the angle between the command u and v_k, the movement from where the
+// avatar stands now to where node k ends, mapped to (0, 1) by g(a) = (1 + cos a) / 2. A zero
+// command means "stop": nodes that end close to the avatar match best.
+float MotionTree::base_match(const MotionTreeNode& n) const {
+  const vec2 v = n.end_pos_m - avatar_pos_m_;
+  const float v_len = glm::length(v);
+  float g;
+  if (command_ == vec2(0.0f)) {
+    g = 1.0f - std::min(v_len / 2.0f, 1.0f);
+  } else if (v_len < 1e-3f) {
+    g = 0.25f;  // standing still while asked to move: a poor but not impossible match
+  } else {
+    g = 0.5f * (1.0f + glm::dot(command_, v) / v_len);
+  }
+  return std::clamp(g, config_.min_priority, config_.max_priority);
+}
+
+float MotionTree::statistic(const MotionTreeNode& n) const {
+  if (statistics_.empty() || n.transition < 0) return 0.5f;
+  return std::clamp(statistics_.probability[static_cast<size_t>(n.transition)],
+                    config_.min_priority, config_.max_priority);
+}
+
+float MotionTree::grow_priority_of(const MotionTreeNode& n, float parent_grow) const {
+  switch (config_.strategy) {
+    case Strategy::kBreadthFirst: return -static_cast<float>(n.depth);
+    case Strategy::kCommand:
+    case Strategy::kCommandNoResort: return n.match;
+    case Strategy::kStatistic: return parent_grow * statistic(n);
+    case Strategy::kHybrid: return parent_grow * base_match(n) * statistic(n);
+  }
+  return 0.0f;
+}
+
+void MotionTree::set_command(vec2 world_direction, vec2 avatar_pos_m) {
+  const float len = glm::length(world_direction);
+  command_ = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
+  avatar_pos_m_ = avatar_pos_m;
+  refresh_priorities();
+  if (config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid)
+    rebuild_queue();
+}
+
+void MotionTree::refresh_priorities() {
+  const bool resort = config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid;
+  // Depth-first from the root visits every parent before its children.
+  for_each_node([&](int index, const MotionTreeNode& n) {
+    MotionTreeNode& node = nodes_[static_cast<size_t>(index)];
+    if (n.parent < 0) {
+      node.match = 1.0f;
+      if (resort) node.grow_priority = 1.0f;
+      return;
+    }
+    const MotionTreeNode& p = nodes_[static_cast<size_t>(n.parent)];
+    node.match = p.match * base_match(n);
+    if (resort) node.grow_priority = grow_priority_of(node, p.grow_priority);
+  });
+}
+
+void MotionTree::rebuild_queue() {
+  queue_.clear();
+  for_each_node([&](int index, const MotionTreeNode& n) {
+    if (!n.expanded && n.depth < config_.max_depth)
+      queue_.push_back({n.grow_priority, order_[static_cast<size_t>(index)], index});
+  });
+  std::make_heap(queue_.begin(), queue_.end(), queue_less);
+}
+
+GrowResult MotionTree::grow(const GrowBudget& budget) {
+  GrowResult result;
+  const bool has_deadline = budget.deadline != std::chrono::steady_clock::time_point::max();
+  while (true) {
+    if (queue_.empty()) {
+      result.status |= kGrowExhausted;
+      break;
+    }
+    if (result.expansions >= budget.max_expansions ||
+        (has_deadline && std::chrono::steady_clock::now() >= budget.deadline)) {
+      result.status |= kGrowBudgetSpent;
+      break;
+    }
+    const QueueEntry best = queue_.front();
+    const MotionTreeNode& leaf = nodes_[static_cast<size_t>(best.node)];
+    const auto successors = library_.graph.successors(leaf.segment);
+    // Expand a leaf whole or not at all, so a full pool never leaves it half expanded.
+    if (static_cast<int>(successors.size()) > config_.max_nodes - num_nodes_) {
+      result.status |= kGrowOutOfNodes;
+      break;
+    }
+    std::pop_heap(queue_.begin(), queue_.end(), queue_less);
+    queue_.pop_back();
+
+    const int leaf_index = best.node;
+    const Placement place =
+        leaf.start.compose(library_.segment_motion[static_cast<size_t>(leaf.segment)].end);
+    const int first_transition = library_.graph.first_transition[leaf.segment];
+    for (size_t i = 0; i < successors.size(); ++i) {
+      ++result.expansions;
+      const int segment = successors[i].to;
+      CheckStats stats;
+      const bool feasible = !config_.check_collisions ||
+                            segment_feasible(world_, library_.segment_shapes[segment], place, &stats);
+      result.frame_checks += static_cast<int64_t>(stats.frame_checks);
+      if (!feasible) continue;
+      const int child = allocate();
+      MotionTreeNode& parent = nodes_[static_cast<size_t>(leaf_index)];
+      MotionTreeNode& c = nodes_[static_cast<size_t>(child)];
+      c.start = place;
+      c.end_pos_m = place.compose(library_.segment_motion[segment].end).pos_m;
+      c.segment = segment;
+      c.transition = first_transition + static_cast<int>(i);
+      c.parent = leaf_index;
+      c.depth = static_cast<uint16_t>(parent.depth + 1);
+      c.match = parent.match * base_match(c);
+      c.grow_priority = grow_priority_of(c, parent.grow_priority);
+      c.next_sibling = parent.first_child;
+      parent.first_child = child;
+      ++result.nodes_added;
+      if (c.depth < config_.max_depth) {
+        queue_.push_back({c.grow_priority, order_[static_cast<size_t>(child)], child});
+        std::push_heap(queue_.begin(), queue_.end(), queue_less);
+      }
+    }
+    nodes_[static_cast<size_t>(leaf_index)].expanded = 1;
+  }
+  return result;
+}
+
+int MotionTree::select_child() const {
+  const auto& w = config_.selection_weights;
+  int best = -1;
+  float best_sum = -1.0f;
+  uint32_t best_order = 0;
+  for (int c = nodes_[static_cast<size_t>(root_)].first_child; c >= 0;
+       c = nodes_[static_cast<size_t>(c)].next_sibling) {
+    // Branch sum (4.3): every node of the branch, weighted by its depth below the root.
+    float sum = 0.0f;
+    visit_stack_.clear();
+    visit_stack_.push_back(c);
+    while (!visit_stack_.empty()) {
+      const MotionTreeNode& n = nodes_[static_cast<size_t>(visit_stack_.back())];
+      visit_stack_.pop_back();
+      sum += w[std::min(static_cast<size_t>(n.depth - 1), w.size() - 1)] * n.match;
+      for (int k = n.first_child; k >= 0; k = nodes_[static_cast<size_t>(k)].next_sibling)
+        visit_stack_.push_back(k);
+    }
+    const uint32_t order = order_[static_cast<size_t>(c)];
+    if (sum > best_sum || (sum == best_sum && order < best_order)) {
+      best = c;
+      best_sum = sum;
+      best_order = order;
+    }
+  }
+  return best;
+}
+
+int MotionTree::advance_root(int child) {
+  assert(child >= 0 && nodes_[static_cast<size_t>(child)].parent == root_);
+  MotionTreeNode& old_root = nodes_[static_cast<size_t>(root_)];
+  int c = old_root.first_child;
+  while (c >= 0) {
+    const int next = nodes_[static_cast<size_t>(c)].next_sibling;
+    if (c != child) free_subtree(c);
+    c = next;
+  }
+  old_root.first_child = -1;
+  free_subtree(root_);
+  root_ = child;
+  MotionTreeNode& r = nodes_[static_cast<size_t>(root_)];
+  r.parent = -1;
+  r.next_sibling = -1;
+  // Depths are relative to the root, so the depth cap keeps looking the same distance ahead.
+  for_each_node([&](int index, const MotionTreeNode&) { --nodes_[static_cast<size_t>(index)].depth; });
+  refresh_priorities();
+  rebuild_queue();
+  return r.transition;
+}
+
+int MotionTree::max_depth_reached() const {
+  int d = 0;
+  for_each_node([&](int, const MotionTreeNode& n) { d = std::max(d, static_cast<int>(n.depth)); });
+  return d;
+}
+
+}  // namespace foresight

@@ -1,0 +1,183 @@
+#pragma once
+// The feasible motion tree (paper section 4): a best-first look-ahead over the motion graph.
+//
+// A node is (segment, placement of the avatar root when the segment starts). The root is the
+// segment now playing. Growing takes the best leaf, places every successor segment at the leaf's
+// end, keeps the collision-free ones (every frame checked) and gives them priorities. When the
+// playing segment ends, advance_root() picks the child whose branch has the largest weighted sum
+// of priorities (4.3); the root moves down and the sibling subtrees are freed (Fig. 4).
+//
+// Memory: nodes live in a fixed pool with a free list and the leaf queue is a heap over a vector
+// reserved once; nothing is allocated while growing, advancing or re-prioritising.
+// Determinism: the same inputs and the same expansion budget give the same tree, bit for bit
+// (ties are broken by the order nodes were created).
+#include "library/motion_library.hpp"
+#include "lookahead/strategy.hpp"
+#include "lookahead/transition_statistics.hpp"
+#include "world/collision_check.hpp"
+#include "world/collision_world.hpp"
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+namespace foresight {
+
+struct MotionTreeConfig {
+  int max_nodes = 8192;        ///< Pool size. [Limit: >= 2]
+  int max_depth = 8;           ///< Root is depth 0; nodes deeper than this are never created.
+  Strategy strategy = Strategy::kCommand;
+  /// Weight of a node at depth d (1-based below the root) in the branch sum of 4.3; decreasing.
+  /// Depths past the end use the last weight.
+  std::array<float, 8> selection_weights{1.0f, 0.5f, 0.25f, 0.125f, 0.0625f, 0.03125f, 0.015625f,
+                                         0.0078125f};
+  /// Base priorities are clamped to [min_priority, max_priority] so 0 < pb < 1 as in the paper.
+  float min_priority = 0.01f;
+  float max_priority = 0.99f;
+  /// false: children are kept without a collision check. Only for the naive baseline controller
+  /// (a game FSM that plays the best-matching clip and stops when it would collide), never for
+  /// look-ahead.
+  bool check_collisions = true;
+};
+
+/// The paper's controller and the two baselines of the navigation comparison, as tree settings.
+inline MotionTreeConfig greedy_depth1_config(MotionTreeConfig c) {
+  c.max_depth = 1;
+  return c;
+}
+inline MotionTreeConfig naive_fsm_config(MotionTreeConfig c) {
+  c.max_depth = 1;
+  c.check_collisions = false;
+  c.strategy = Strategy::kCommand;
+  return c;
+}
+
+/// How much growing may spend: a number of expansions (deterministic tests, experiments) and/or a
+/// wall-clock deadline (production). One expansion = one successor placed, collision-checked over
+/// all its frames, and prioritised.
+struct GrowBudget {
+  int64_t max_expansions = INT64_MAX;
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+
+  static GrowBudget expansions(int64_t n) { return {n, std::chrono::steady_clock::time_point::max()}; }
+  static GrowBudget until(std::chrono::steady_clock::time_point t) { return {INT64_MAX, t}; }
+};
+
+/// Why growing stopped (bit flags, Detour-style: the tree is always the best partial answer).
+enum GrowStatus : uint32_t {
+  kGrowBudgetSpent = 1u << 0,  ///< Expansion count or deadline reached.
+  kGrowOutOfNodes = 1u << 1,   ///< The pool is full.
+  kGrowExhausted = 1u << 2,    ///< No leaf left to expand (depth cap or dead ends everywhere).
+};
+
+struct GrowResult {
+  uint32_t status = 0;
+  int64_t expansions = 0;    ///< Successors placed and checked.
+  int64_t nodes_added = 0;   ///< Of those, the feasible ones kept.
+  int64_t frame_checks = 0;  ///< Body frames tested against the scene.
+};
+
+/// One node, 48 bytes. Indices, not pointers: the pool may be copied.
+struct MotionTreeNode {
+  Placement start;          ///< World placement where the segment starts.
+  vec2 end_pos_m{0.0f};     ///< World ground position where it ends (for v_k and drawing).
+  float grow_priority = 0;  ///< Heap key (strategy dependent; breadth-first: -depth).
+  float match = 1;          ///< Product of command-matching base priorities from the root.
+  int32_t segment = -1;
+  int32_t transition = -1;  ///< Graph transition from the parent's segment (-1 for the root).
+  int32_t parent = -1;
+  int32_t first_child = -1;
+  int32_t next_sibling = -1;  ///< Also links the free list.
+  uint16_t depth = 0;
+  uint16_t expanded = 0;    ///< 1 once its successors were placed.
+};
+
+class MotionTree {
+ public:
+  MotionTree(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config);
+
+  /// Drops every node and makes (segment at start) the root, entered by `incoming_transition`.
+  void reset(int segment, const Placement& start, int incoming_transition = -1);
+
+  /// The player's command as a world ground direction (zero = stop) and where the avatar stands
+  /// now (v_k is measured from there). For re-sorting strategies (command, hybrid) this
+  /// recomputes every leaf's priority and rebuilds the queue; breadth-first, command-no-resort
+  /// and statistic keep the priorities nodes were created with.
+  void set_command(vec2 world_direction, vec2 avatar_pos_m);
+
+  /// Strategy 3 and 4 priorities (learned elsewhere). Without them both fall back to uniform.
+  void set_statistics(TransitionStatistics statistics) { statistics_ = std::move(statistics); }
+
+  /// Grows best-first until the budget is spent, the pool is full or nothing is left to expand.
+  GrowResult grow(const GrowBudget& budget);
+
+  /// The child of the root with the largest weighted branch sum under the current command, or -1
+  /// when the root has no feasible child. Ties go to the earlier child.
+  int select_child() const;
+
+  /// Makes `child` (a child of the root) the root and frees every other branch. Returns the graph
+  /// transition that enters it.
+  int advance_root(int child);
+
+  int root() const { return root_; }
+  const MotionTreeNode& node(int index) const { return nodes_[static_cast<size_t>(index)]; }
+  int num_nodes() const { return num_nodes_; }
+  int num_leaves_queued() const { return static_cast<int>(queue_.size()); }
+  int max_depth_reached() const;
+  const MotionTreeConfig& config() const { return config_; }
+  Strategy strategy() const { return config_.strategy; }
+  /// Bytes of memory per node: the node plus its share of the queue entry.
+  static constexpr size_t bytes_per_node() { return sizeof(MotionTreeNode) + sizeof(QueueEntry); }
+
+  /// Visits every node in the tree (depth-first from the root): f(index, node).
+  template <typename F>
+  void for_each_node(F&& f) const {
+    if (root_ < 0) return;
+    visit_stack_.clear();
+    visit_stack_.push_back(root_);
+    while (!visit_stack_.empty()) {
+      const int n = visit_stack_.back();
+      visit_stack_.pop_back();
+      f(n, nodes_[static_cast<size_t>(n)]);
+      for (int c = nodes_[static_cast<size_t>(n)].first_child; c >= 0;
+           c = nodes_[static_cast<size_t>(c)].next_sibling)
+        visit_stack_.push_back(c);
+    }
+  }
+
+ private:
+  struct QueueEntry {
+    float priority;
+    uint32_t order;  // creation order: earlier wins ties (FIFO), for determinism
+    int32_t node;
+  };
+  static bool queue_less(const QueueEntry& a, const QueueEntry& b) {
+    return a.priority != b.priority ? a.priority < b.priority : a.order > b.order;
+  }
+
+  int allocate();
+  void free_subtree(int index);
+  float base_match(const MotionTreeNode& n) const;
+  float statistic(const MotionTreeNode& n) const;
+  float grow_priority_of(const MotionTreeNode& n, float parent_grow) const;
+  void refresh_priorities();  // recompute match (and re-sorting grow priorities) top-down
+  void rebuild_queue();
+
+  const MotionLibrary& library_;
+  const CollisionWorld& world_;
+  MotionTreeConfig config_;
+  TransitionStatistics statistics_;
+  std::vector<MotionTreeNode> nodes_;
+  std::vector<uint32_t> order_;  // per node: creation order
+  std::vector<QueueEntry> queue_;
+  mutable std::vector<int> visit_stack_;
+  int free_head_ = -1;
+  int num_nodes_ = 0;
+  int root_ = -1;
+  uint32_t next_order_ = 0;
+  vec2 command_{0.0f};
+  vec2 avatar_pos_m_{0.0f};
+};
+
+}  // namespace foresight

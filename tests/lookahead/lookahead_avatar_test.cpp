@@ -1,0 +1,125 @@
+#include "lookahead/lookahead_avatar.hpp"
+
+#include "anim/fk.hpp"
+#include "lookahead_fixture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace foresight {
+namespace {
+
+using test::default_library;
+using test::loaded_scene;
+
+// The shown pose, re-checked from FK independently of the precomputed segment volumes.
+bool shown_pose_collides(const MotionLibrary& lib, const CollisionWorld& world,
+                         const PlaybackState& state) {
+  Pose pose;
+  playback_pose(lib, state, pose);
+  std::vector<vec3> pos(static_cast<size_t>(lib.num_joints()));
+  std::vector<quat> rot(static_cast<size_t>(lib.num_joints()));
+  fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, pos, rot);
+  return frame_collides(world, body_volume_from_pose(pos));
+}
+
+struct RunStats {
+  int colliding_frames = 0;
+  vec2 displacement{0.0f};
+};
+
+RunStats run(LookaheadAvatar& avatar, const MotionLibrary& lib, const CollisionWorld& world,
+             const ControlInput& input, int frames, int64_t expansions_per_frame) {
+  RunStats stats;
+  const vec2 start = avatar.root().pos_m;
+  for (int f = 0; f < frames; ++f) {
+    avatar.set_input(input);
+    avatar.grow(GrowBudget::expansions(expansions_per_frame));
+    avatar.step();
+    stats.colliding_frames += shown_pose_collides(lib, world, avatar.playback());
+  }
+  stats.displacement = avatar.root().pos_m - start;
+  return stats;
+}
+
+TEST(ControlInput, CameraSpaceBecomesWorldAndAvatarDirections) {
+  ControlInput in;
+  in.camera_dir = vec2(0, 1);  // "up": along the camera's view
+  in.camera_yaw_rad = 0.0f;    // camera looks along +Z
+  EXPECT_NEAR(glm::length(control_world_direction(in) - vec2(0, 1)), 0.0f, 1e-6f);
+  in.camera_dir = vec2(1, 0);  // "right": the camera's right is -X when it looks along +Z
+  EXPECT_NEAR(glm::length(control_world_direction(in) - vec2(-1, 0)), 0.0f, 1e-6f);
+  in.camera_dir = vec2(0, 1);
+  in.camera_yaw_rad = kPi / 2;  // camera looks along +X
+  EXPECT_NEAR(glm::length(control_world_direction(in) - vec2(1, 0)), 0.0f, 1e-6f);
+  // An avatar facing +X sees that as straight ahead (+Z in its own frame).
+  EXPECT_NEAR(glm::length(control_avatar_direction(in, kPi / 2) - vec2(0, 1)), 0.0f, 1e-6f);
+  EXPECT_EQ(control_world_direction(ControlInput{}), vec2(0.0f));
+}
+
+TEST(LookaheadAvatar, FollowsASteadyCommandInTheOpen) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  LookaheadAvatar avatar(lib, arena.world, MotionTreeConfig{}, test::idle_segment(lib),
+                         Placement{vec2(0, -5), 0.0f});
+  ControlInput in;
+  in.camera_dir = vec2(0, 1);  // camera yaw 0: walk towards +Z
+  const RunStats s = run(avatar, lib, arena.world, in, 10 * 30, 300);
+  EXPECT_EQ(s.colliding_frames, 0);
+  EXPECT_GT(s.displacement.y, 5.0f);
+  EXPECT_LT(std::abs(s.displacement.x), 0.5f * s.displacement.y);
+}
+
+TEST(LookaheadAvatar, SteeringIntoAWallNeverEntersIt) {
+  const auto& lib = default_library();
+  const auto& maze = loaded_scene("maze");
+  const SpawnPoint& spawn = maze.scene.spawns.front();
+  for (Strategy strategy : {Strategy::kBreadthFirst, Strategy::kCommand, Strategy::kCommandNoResort,
+                            Strategy::kStatistic, Strategy::kHybrid}) {
+    MotionTreeConfig config;
+    config.strategy = strategy;
+    LookaheadAvatar avatar(lib, maze.world, config, test::idle_segment(lib),
+                           {spawn.pos_m, spawn.heading_rad});
+    ControlInput into_wall;
+    into_wall.camera_dir = vec2(0, 1);
+    into_wall.camera_yaw_rad = kPi;  // towards -Z: the outer wall 1.25 m away
+    const RunStats s = run(avatar, lib, maze.world, into_wall, 20 * 30, 200);
+    EXPECT_EQ(s.colliding_frames, 0) << strategy_name(strategy);
+  }
+}
+
+TEST(LookaheadAvatar, WithNoBudgetItFallsBackToIdleAndNeverMoves) {
+  const auto& lib = default_library();
+  const auto& maze = loaded_scene("maze");
+  const SpawnPoint& spawn = maze.scene.spawns.front();
+  LookaheadAvatar avatar(lib, maze.world, MotionTreeConfig{}, test::idle_segment(lib),
+                         {spawn.pos_m, spawn.heading_rad});
+  ASSERT_GE(avatar.fallback_segment(), 0);
+  ControlInput go;
+  go.camera_dir = vec2(0, 1);
+  const RunStats s = run(avatar, lib, maze.world, go, 10 * 30, 0);
+  EXPECT_EQ(s.colliding_frames, 0);
+  EXPECT_GT(avatar.fallbacks(), 0);
+  EXPECT_LT(glm::length(s.displacement), 0.05f);
+  EXPECT_EQ(avatar.playback().segment, avatar.fallback_segment());
+}
+
+TEST(LookaheadAvatar, BrokenInputIsRefusedCountedAndMeansStop) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  LookaheadAvatar avatar(lib, arena.world, MotionTreeConfig{}, test::idle_segment(lib), Placement{});
+  ControlInput bad;
+  bad.camera_dir = vec2(std::numeric_limits<float>::quiet_NaN(), 1.0f);
+  avatar.set_input(bad);
+  bad.camera_dir = vec2(3.0f, 0.0f);  // longer than a unit vector
+  avatar.set_input(bad);
+  bad.camera_dir = vec2(0.0f, 1.0f);
+  bad.camera_yaw_rad = std::numeric_limits<float>::infinity();
+  avatar.set_input(bad);
+  EXPECT_EQ(avatar.rejected_inputs(), 3);
+  EXPECT_EQ(avatar.input().camera_dir, vec2(0.0f));
+}
+
+}  // namespace
+}  // namespace foresight

@@ -1,0 +1,44 @@
+#pragma once
+// The default library and the built-in scenes, loaded once per test binary.
+#include "library/library_source.hpp"
+#include "world/collision_world.hpp"
+#include "world/data_paths.hpp"
+#include "world/scene_load.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+namespace foresight::test {
+
+inline const MotionLibrary& default_library() {
+  static const MotionLibrary lib = motion_library_default();
+  return lib;
+}
+
+struct LoadedScene {
+  Scene scene;
+  CollisionWorld world;
+};
+
+inline const LoadedScene& loaded_scene(const std::string& name) {
+  static std::map<std::string, LoadedScene> cache;
+  auto it = cache.find(name);
+  if (it == cache.end()) {
+    LoadedScene s;
+    std::string error;
+    if (!scene_load(scene_path(name), s.scene, error) || !collision_world_build(s.scene, s.world, error))
+      ADD_FAILURE() << error;
+    it = cache.emplace(name, std::move(s)).first;
+  }
+  return it->second;
+}
+
+/// The first idle segment (where avatars spawn).
+inline int idle_segment(const MotionLibrary& lib) {
+  for (int s = 0; s < lib.graph.num_segments(); ++s)
+    if (lib.graph.segments[s].tags & kTagIdle) return s;
+  return 0;
+}
+
+}  // namespace foresight::test

@@ -1,0 +1,251 @@
+#include "lookahead/motion_tree.hpp"
+
+#include "lookahead_fixture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace foresight {
+namespace {
+
+using test::default_library;
+using test::loaded_scene;
+
+// A walking segment (moves forward at least 0.3 m) to root trees in, so children exist at once.
+int walk_segment(const MotionLibrary& lib) {
+  for (int s = 0; s < lib.graph.num_segments(); ++s) {
+    const uint32_t tags = lib.graph.segments[s].tags;
+    if ((tags & kTagLocomotion) && !(tags & (kTagCrouch | kTagRun | kTagTurn)) &&
+        lib.segment_motion[s].end.pos_m.y > 0.3f)
+      return s;
+  }
+  return 0;
+}
+
+MotionTreeConfig config_for(Strategy s, int max_nodes = 4096) {
+  MotionTreeConfig c;
+  c.strategy = s;
+  c.max_nodes = max_nodes;
+  return c;
+}
+
+// The arena's open middle, facing +Z.
+const Placement kOpen{vec2(0.0f, -4.0f), 0.0f};
+
+std::vector<MotionTreeNode> snapshot(const MotionTree& t) {
+  std::vector<MotionTreeNode> out;
+  t.for_each_node([&](int, const MotionTreeNode& n) { out.push_back(n); });
+  return out;
+}
+
+TEST(MotionTree, SameInputAndBudgetGiveTheSameTreeBitForBit) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  for (int s = 0; s < kNumStrategies; ++s) {
+    MotionTree a(lib, arena.world, config_for(static_cast<Strategy>(s)));
+    MotionTree b(lib, arena.world, config_for(static_cast<Strategy>(s)));
+    for (MotionTree* t : {&a, &b}) {
+      t->reset(walk_segment(lib), kOpen);
+      t->set_command(vec2(1.0f, 1.0f), kOpen.pos_m);
+      t->grow(GrowBudget::expansions(500));
+      t->set_command(vec2(-1.0f, 0.2f), kOpen.pos_m);
+      t->grow(GrowBudget::expansions(300));
+    }
+    const auto na = snapshot(a), nb = snapshot(b);
+    ASSERT_EQ(na.size(), nb.size()) << strategy_name(static_cast<Strategy>(s));
+    ASSERT_GT(na.size(), 20u);
+    EXPECT_EQ(std::memcmp(na.data(), nb.data(), na.size() * sizeof(MotionTreeNode)), 0)
+        << strategy_name(static_cast<Strategy>(s));
+  }
+}
+
+TEST(MotionTree, EveryNodeIsCollisionFreeAndPlacedAtItsParentsEnd) {
+  const auto& lib = default_library();
+  const auto& maze = loaded_scene("maze");
+  MotionTree t(lib, maze.world, config_for(Strategy::kBreadthFirst));
+  const SpawnPoint& spawn = maze.scene.spawns.front();
+  t.reset(test::idle_segment(lib), {spawn.pos_m, spawn.heading_rad});
+  t.set_command(vec2(1, 0), spawn.pos_m);
+  const GrowResult r = t.grow(GrowBudget::expansions(3000));
+  EXPECT_GT(r.nodes_added, 10);
+  EXPECT_LT(r.nodes_added, r.expansions);  // the maze's walls reject some placements
+  int checked = 0;
+  t.for_each_node([&](int, const MotionTreeNode& n) {
+    if (n.parent < 0) return;
+    const MotionTreeNode& p = t.node(n.parent);
+    const Placement expected = p.start.compose(lib.segment_motion[p.segment].end);
+    EXPECT_NEAR(glm::length(n.start.pos_m - expected.pos_m), 0.0f, 1e-5f);
+    EXPECT_TRUE(segment_feasible(maze.world, lib.segment_shapes[n.segment], n.start));
+    EXPECT_EQ(lib.graph.transitions[n.transition].to, n.segment);
+    EXPECT_EQ(lib.graph.transitions[n.transition].from, p.segment);
+    ++checked;
+  });
+  EXPECT_EQ(checked + 1, t.num_nodes());
+}
+
+TEST(MotionTree, AdvancingTheRootKeepsOnlyTheChosenBranch) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTree t(lib, arena.world, config_for(Strategy::kCommand));
+  t.reset(walk_segment(lib), kOpen);
+  t.set_command(vec2(0, 1), kOpen.pos_m);
+  t.grow(GrowBudget::expansions(2000));
+  const int child = t.select_child();
+  ASSERT_GE(child, 0);
+  int branch = 0;
+  std::vector<int> stack{child};
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    ++branch;
+    for (int c = t.node(n).first_child; c >= 0; c = t.node(c).next_sibling) stack.push_back(c);
+  }
+  const int before = t.num_nodes();
+  const int expected_transition = t.node(child).transition;
+  EXPECT_EQ(t.advance_root(child), expected_transition);
+  EXPECT_EQ(t.root(), child);
+  EXPECT_EQ(t.num_nodes(), branch);
+  EXPECT_LT(t.num_nodes(), before);
+  EXPECT_EQ(t.node(child).depth, 0);
+  int counted = 0;
+  t.for_each_node([&](int, const MotionTreeNode&) { ++counted; });
+  EXPECT_EQ(counted, t.num_nodes());
+  // Freed nodes are reused: growing again never exceeds the pool.
+  t.grow(GrowBudget::expansions(100000));
+  EXPECT_LE(t.num_nodes(), t.config().max_nodes);
+}
+
+TEST(MotionTree, BudgetsCapsAndStatusesAreHonoured) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTreeConfig small = config_for(Strategy::kCommand, 64);
+  MotionTree t(lib, arena.world, small);
+  t.reset(walk_segment(lib), kOpen);
+  EXPECT_EQ(t.grow(GrowBudget::expansions(0)).expansions, 0);
+  EXPECT_EQ(t.num_nodes(), 1);
+  const GrowResult r = t.grow(GrowBudget::expansions(1000000));
+  EXPECT_TRUE(r.status & kGrowOutOfNodes);
+  EXPECT_LE(t.num_nodes(), 64);
+
+  MotionTreeConfig shallow = config_for(Strategy::kBreadthFirst);
+  shallow.max_depth = 2;
+  MotionTree d(lib, arena.world, shallow);
+  d.reset(walk_segment(lib), kOpen);
+  const GrowResult rd = d.grow(GrowBudget::expansions(1000000));
+  EXPECT_TRUE(rd.status & kGrowExhausted);
+  EXPECT_EQ(d.max_depth_reached(), 2);
+
+  // A deadline in the past spends nothing.
+  MotionTree late(lib, arena.world, config_for(Strategy::kCommand));
+  late.reset(walk_segment(lib), kOpen);
+  const GrowResult rl = late.grow(GrowBudget::until(std::chrono::steady_clock::now()));
+  EXPECT_TRUE(rl.status & kGrowBudgetSpent);
+  EXPECT_EQ(rl.expansions, 0);
+}
+
+TEST(MotionTree, BreadthFirstFillsEachDepthBeforeTheNext) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTree t(lib, arena.world, config_for(Strategy::kBreadthFirst, 100000));
+  t.reset(walk_segment(lib), kOpen);
+  t.grow(GrowBudget::expansions(1500));
+  int shallowest_open = 1 << 30, deepest = 0;
+  t.for_each_node([&](int, const MotionTreeNode& n) {
+    if (!n.expanded) shallowest_open = std::min<int>(shallowest_open, n.depth);
+    deepest = std::max<int>(deepest, n.depth);
+  });
+  // Every node shallower than the shallowest unexpanded one was expanded.
+  EXPECT_LE(deepest, shallowest_open + 1);
+}
+
+// Mean end position of the tree's nodes along a direction, relative to the start.
+float reach_along(const MotionTree& t, vec2 dir) {
+  float sum = 0;
+  int n = 0;
+  t.for_each_node([&](int, const MotionTreeNode& node) {
+    sum += glm::dot(node.end_pos_m - kOpen.pos_m, dir);
+    ++n;
+  });
+  return sum / n;
+}
+
+TEST(MotionTree, CommandMatchingGrowsTowardsTheCommandAndSelectsIt) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  for (Strategy s : {Strategy::kCommand, Strategy::kCommandNoResort, Strategy::kHybrid}) {
+    for (float side : {1.0f, -1.0f}) {  // world +X is the avatar's left when facing +Z
+      MotionTree t(lib, arena.world, config_for(s));
+      t.reset(walk_segment(lib), kOpen);
+      t.set_command(vec2(side, 0.0f), kOpen.pos_m);
+      t.grow(GrowBudget::expansions(1500));
+      EXPECT_GT(reach_along(t, vec2(side, 0)), 0.3f) << strategy_name(s) << " side " << side;
+      const int child = t.select_child();
+      ASSERT_GE(child, 0);
+      // The chosen branch turns the way the command points.
+      const float turn = lib.segment_motion[t.node(child).segment].end.heading_rad;
+      EXPECT_GT(turn * side, 0.0f) << strategy_name(s) << " chose "
+                                   << lib.graph.segments[t.node(child).segment].name;
+    }
+  }
+}
+
+TEST(MotionTree, OnlyResortingStrategiesReorderWhenTheCommandChanges) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  for (Strategy s : {Strategy::kCommand, Strategy::kCommandNoResort}) {
+    MotionTree t(lib, arena.world, config_for(s));
+    t.reset(walk_segment(lib), kOpen);
+    t.set_command(vec2(1, 0), kOpen.pos_m);
+    t.grow(GrowBudget::expansions(400));
+    std::vector<float> before;
+    t.for_each_node([&](int, const MotionTreeNode& n) { before.push_back(n.grow_priority); });
+    t.set_command(vec2(-1, 0), kOpen.pos_m);
+    std::vector<float> after;
+    t.for_each_node([&](int, const MotionTreeNode& n) { after.push_back(n.grow_priority); });
+    if (s == Strategy::kCommand)
+      EXPECT_NE(before, after);
+    else
+      EXPECT_EQ(before, after);
+  }
+}
+
+TEST(MotionTree, StatisticPrioritiesFollowTheLearnedChoices) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  const int root = walk_segment(lib);
+  // Pretend the training run always took the first successor of every segment.
+  std::vector<int> taken;
+  for (int s = 0; s < lib.graph.num_segments(); ++s)
+    for (int k = 0; k < 20; ++k) taken.push_back(lib.graph.first_transition[s]);
+  MotionTree t(lib, arena.world, config_for(Strategy::kStatistic));
+  t.set_statistics(transition_statistics_learn(lib.graph, taken));
+  t.reset(root, kOpen);
+  t.grow(GrowBudget::expansions(800));
+  // The favoured child's branch holds most of the tree.
+  int favoured = -1, favoured_size = 0;
+  for (int c = t.node(t.root()).first_child; c >= 0; c = t.node(c).next_sibling)
+    if (t.node(c).transition == lib.graph.first_transition[root]) favoured = c;
+  ASSERT_GE(favoured, 0);
+  t.for_each_node([&](int i, const MotionTreeNode&) {
+    for (int n = i; n >= 0; n = t.node(n).parent)
+      if (n == favoured) {
+        ++favoured_size;
+        break;
+      }
+  });
+  EXPECT_GT(favoured_size * 2, t.num_nodes());
+}
+
+TEST(Strategy, NamesAndNumbersParseAndUnknownNamesDoNot) {
+  EXPECT_EQ(strategy_from_name("breadth-first"), Strategy::kBreadthFirst);
+  EXPECT_EQ(strategy_from_name("4"), Strategy::kHybrid);
+  EXPECT_EQ(strategy_from_name("hybrid"), Strategy::kHybrid);
+  EXPECT_FALSE(strategy_from_name("depth-first").has_value());
+  EXPECT_FALSE(strategy_from_name("5").has_value());
+  EXPECT_FALSE(strategy_from_name("").has_value());
+  EXPECT_NE(strategy_names().find("command-no-resort"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace foresight
