@@ -29,6 +29,16 @@ struct GraphBenchOptions {
 };
 int bench_graph(const GraphBenchOptions& options);
 
+struct LookaheadBenchOptions {
+  std::string scene = "maze";
+  std::string strategy = "command";
+  double seconds = 3.0;
+  int expansions_per_tree = 4000;  ///< Then the tree is reset at a new random placement.
+  unsigned long long seed = 1;
+  bool json = false;
+};
+int bench_lookahead(const LookaheadBenchOptions& options);
+
 /// Median of a list of samples (the list is reordered).
 double median(std::vector<double>& samples);
 

@@ -2,6 +2,7 @@
 //   foresight-bench collision [--scene maze] [--seconds 3] [--json]
 //   foresight-bench bvh [--file F] [--json]
 //   foresight-bench graph --motions DIR [--json]
+//   foresight-bench lookahead [--scene maze] [--strategy command] [--json]
 #include "bench_commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -44,7 +45,18 @@ int main(int argc, char** argv) {
   g->add_option("--runs", graph.runs, "Repetitions (median reported)")->check(CLI::Range(1, 100));
   g->add_flag("--json", graph.json, "Print one JSON object as the last line");
 
+  LookaheadBenchOptions lookahead;
+  auto* l = app.add_subcommand("lookahead", "Feasible motion tree growth on one core");
+  l->add_option("--scene", lookahead.scene, "Built-in scene name or scene .json path");
+  l->add_option("--strategy", lookahead.strategy, "Exploration strategy (name or 0-4)");
+  l->add_option("--seconds", lookahead.seconds, "Measured seconds")->check(CLI::Range(0.1, 600.0));
+  l->add_option("--expansions-per-tree", lookahead.expansions_per_tree,
+                "Expansions before the tree is re-rooted elsewhere")->check(CLI::Range(1, 100000000));
+  l->add_option("--seed", lookahead.seed, "Placement seed");
+  l->add_flag("--json", lookahead.json, "Print one JSON object as the last line");
+
   CLI11_PARSE(app, argc, argv);
+  if (*l) return bench_lookahead(lookahead);
   if (*c) return bench_collision(collision);
   if (*b) return bench_bvh(bvh);
   return bench_graph(graph);
