@@ -307,24 +307,15 @@ bool ground_height_at(const CollisionWorld& world, vec2 p_m, float& height_m) {
 }
 
 bool ground_height_in_cell(const CollisionWorld& world, int cell, vec2 p_m, float& height_m) {
-  const Terrain& t = world.terrain;
-  // The same steps as terrain_height_at, restricted to the steps registered near this cell (the
-  // others cannot cover p), so the answers are identical.
-  float h = t.floor_y_m;
-  bool has_ground = true;
-  switch (height_field_sample(t.height_field, p_m, h)) {
-    case FieldSample::kOutside: h = t.floor_y_m; break;
-    case FieldSample::kHole: has_ground = false; break;
-    case FieldSample::kGround: break;
-  }
-  for (std::uint32_t k = world.step_first[cell]; k < world.step_first[cell + 1]; ++k) {
-    const StepBlock& step = t.steps[world.step_refs[k]];
-    if (!step_covers(step, p_m)) continue;
-    h = has_ground ? std::max(h, step.max_m.y) : step.max_m.y;
-    has_ground = true;
-  }
-  if (has_ground) height_m = h;
-  return has_ground;
+  // Only the steps registered near this cell can cover p, so the answer equals terrain_height_at.
+  const std::uint32_t first = world.step_first[static_cast<size_t>(cell)];
+  const int count = static_cast<int>(world.step_first[static_cast<size_t>(cell) + 1] - first);
+  return terrain_height_over_steps(
+      world.terrain, p_m, count,
+      [&](int k) -> const StepBlock& {
+        return world.terrain.steps[world.step_refs[first + static_cast<std::uint32_t>(k)]];
+      },
+      height_m);
 }
 
 }  // namespace foresight

@@ -3,6 +3,7 @@
 // world agrees with, and what scene validation uses to put spawns on the ground.
 #include "world/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -42,5 +43,28 @@ inline bool step_covers(const StepBlock& step, vec2 p_m) {
 /// top of every step block covering p. False where there is no ground (a height-field hole with no
 /// step over it). Does not look at scene bounds. Cost: O(number of steps).
 bool terrain_height_at(const Terrain& terrain, vec2 p_m, float& height_m);
+
+/// terrain_height_at over a subset of the steps: `step_at(k)` for k in [0, num_steps) returns the
+/// k-th candidate step (e.g. only those registered near a grid cell; the others must not cover p).
+template <typename StepAt>
+bool terrain_height_over_steps(const Terrain& terrain, vec2 p_m, int num_steps, StepAt step_at,
+                               float& height_m) {
+  float h = terrain.floor_y_m;
+  bool has_ground = true;
+  switch (height_field_sample(terrain.height_field, p_m, h)) {
+    case FieldSample::kOutside: h = terrain.floor_y_m; break;
+    case FieldSample::kHole: has_ground = false; break;
+    case FieldSample::kGround: break;
+  }
+  // A step over a hole is a bridge: it provides ground on its own.
+  for (int k = 0; k < num_steps; ++k) {
+    const StepBlock& step = step_at(k);
+    if (!step_covers(step, p_m)) continue;
+    h = has_ground ? std::max(h, step.max_m.y) : step.max_m.y;
+    has_ground = true;
+  }
+  if (has_ground) height_m = h;
+  return has_ground;
+}
 
 }  // namespace foresight
