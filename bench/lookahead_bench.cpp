@@ -61,7 +61,7 @@ int bench_lookahead(const LookaheadBenchOptions& o) {
   while (Clock::now() < end) {
     const Root& r = roots[static_cast<size_t>(trees) % roots.size()];
     tree.reset(r.segment, r.start);
-    tree.set_command(r.command, r.start.pos_m);
+    tree.set_command(r.command, r.start);
     const GrowResult g = tree.grow(GrowBudget::expansions(o.expansions_per_tree));
     expansions += g.expansions;
     nodes += g.nodes_added;

@@ -65,13 +65,18 @@ void MotionTree::free_subtree(int index) {
 
 // Command matching (4.2): the angle between the command u and v_k, the movement from where the
 // avatar stands now to where node k ends, mapped to (0, 1) by g(a) = (1 + cos a) / 2. A zero
-// command means "stop": nodes that end close to the avatar match best.
+// command means "stop": nodes that end close to the avatar, facing the way it faces, match best
+// (without the heading term, turning on the spot matches "stop" as well as standing still, and
+// an idle avatar fidgets round in circles).
 float MotionTree::base_match(const MotionTreeNode& n) const {
-  const vec2 v = n.end_pos_m - avatar_pos_m_;
+  const vec2 v = n.end_pos_m - avatar_.pos_m;
   const float v_len = glm::length(v);
   float g;
   if (command_ == vec2(0.0f)) {
-    g = 1.0f - std::min(v_len / 2.0f, 1.0f);
+    const float end_heading =
+        n.start.heading_rad + library_.segment_motion[static_cast<size_t>(n.segment)].end.heading_rad;
+    const float turn = std::abs(wrap_angle(end_heading - avatar_.heading_rad));
+    g = (1.0f - std::min(v_len / 2.0f, 1.0f)) * (1.0f - 0.8f * turn / kPi);
   } else if (v_len < 1e-3f) {
     g = 0.25f;  // standing still while asked to move: a poor but not impossible match
   } else {
@@ -97,10 +102,10 @@ float MotionTree::grow_priority_of(const MotionTreeNode& n, float parent_grow) c
   return 0.0f;
 }
 
-void MotionTree::set_command(vec2 world_direction, vec2 avatar_pos_m) {
+void MotionTree::set_command(vec2 world_direction, const Placement& avatar) {
   const float len = glm::length(world_direction);
   command_ = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
-  avatar_pos_m_ = avatar_pos_m;
+  avatar_ = avatar;
   refresh_priorities();
   if (config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid)
     rebuild_queue();
@@ -160,8 +165,9 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
         leaf.start.compose(library_.segment_motion[static_cast<size_t>(leaf.segment)].end);
     const int first_transition = library_.graph.first_transition[leaf.segment];
     for (size_t i = 0; i < successors.size(); ++i) {
-      ++result.expansions;
       const int segment = successors[i].to;
+      if (library_.graph.segments[static_cast<size_t>(segment)].tags & config_.excluded_tags) continue;
+      ++result.expansions;
       CheckStats stats;
       const bool feasible = !config_.check_collisions ||
                             segment_feasible(world_, library_.segment_shapes[segment], place, &stats);

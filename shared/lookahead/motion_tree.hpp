@@ -39,6 +39,9 @@ struct MotionTreeConfig {
   /// (a game FSM that plays the best-matching clip and stops when it would collide), never for
   /// look-ahead.
   bool check_collisions = true;
+  /// Segments with any of these tags are never added: a player steering with arrow keys does not
+  /// mean to throw punches (SegmentTag bits, graph/motion_graph.hpp).
+  uint32_t excluded_tags = kTagFight;
 };
 
 /// The paper's controller and the two baselines of the navigation comparison, as tree settings.
@@ -101,10 +104,11 @@ class MotionTree {
   void reset(int segment, const Placement& start, int incoming_transition = -1);
 
   /// The player's command as a world ground direction (zero = stop) and where the avatar stands
-  /// now (v_k is measured from there). For re-sorting strategies (command, hybrid) this
-  /// recomputes every leaf's priority and rebuilds the queue; breadth-first, command-no-resort
-  /// and statistic keep the priorities nodes were created with.
-  void set_command(vec2 world_direction, vec2 avatar_pos_m);
+  /// and faces now (v_k is measured from there; "stop" prefers staying and facing the same way).
+  /// For re-sorting strategies (command, hybrid) this recomputes every leaf's priority and
+  /// rebuilds the queue; breadth-first, command-no-resort and statistic keep the priorities nodes
+  /// were created with.
+  void set_command(vec2 world_direction, const Placement& avatar);
 
   /// Strategy 3 and 4 priorities (learned elsewhere). Without them both fall back to uniform.
   void set_statistics(TransitionStatistics statistics) { statistics_ = std::move(statistics); }
@@ -177,7 +181,7 @@ class MotionTree {
   int root_ = -1;
   uint32_t next_order_ = 0;
   vec2 command_{0.0f};
-  vec2 avatar_pos_m_{0.0f};
+  Placement avatar_;
 };
 
 }  // namespace foresight

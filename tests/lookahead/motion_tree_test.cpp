@@ -47,9 +47,9 @@ TEST(MotionTree, SameInputAndBudgetGiveTheSameTreeBitForBit) {
     MotionTree b(lib, arena.world, config_for(static_cast<Strategy>(s)));
     for (MotionTree* t : {&a, &b}) {
       t->reset(walk_segment(lib), kOpen);
-      t->set_command(vec2(1.0f, 1.0f), kOpen.pos_m);
+      t->set_command(vec2(1.0f, 1.0f), kOpen);
       t->grow(GrowBudget::expansions(500));
-      t->set_command(vec2(-1.0f, 0.2f), kOpen.pos_m);
+      t->set_command(vec2(-1.0f, 0.2f), kOpen);
       t->grow(GrowBudget::expansions(300));
     }
     const auto na = snapshot(a), nb = snapshot(b);
@@ -66,7 +66,7 @@ TEST(MotionTree, EveryNodeIsCollisionFreeAndPlacedAtItsParentsEnd) {
   MotionTree t(lib, maze.world, config_for(Strategy::kBreadthFirst));
   const SpawnPoint& spawn = maze.scene.spawns.front();
   t.reset(test::idle_segment(lib), {spawn.pos_m, spawn.heading_rad});
-  t.set_command(vec2(1, 0), spawn.pos_m);
+  t.set_command(vec2(1, 0), {spawn.pos_m, spawn.heading_rad});
   const GrowResult r = t.grow(GrowBudget::expansions(3000));
   EXPECT_GT(r.nodes_added, 10);
   EXPECT_LT(r.nodes_added, r.expansions);  // the maze's walls reject some placements
@@ -89,7 +89,7 @@ TEST(MotionTree, AdvancingTheRootKeepsOnlyTheChosenBranch) {
   const auto& arena = loaded_scene("arena");
   MotionTree t(lib, arena.world, config_for(Strategy::kCommand));
   t.reset(walk_segment(lib), kOpen);
-  t.set_command(vec2(0, 1), kOpen.pos_m);
+  t.set_command(vec2(0, 1), kOpen);
   t.grow(GrowBudget::expansions(2000));
   const int child = t.select_child();
   ASSERT_GE(child, 0);
@@ -177,7 +177,7 @@ TEST(MotionTree, CommandMatchingGrowsTowardsTheCommandAndSelectsIt) {
     for (float side : {1.0f, -1.0f}) {  // world +X is the avatar's left when facing +Z
       MotionTree t(lib, arena.world, config_for(s));
       t.reset(walk_segment(lib), kOpen);
-      t.set_command(vec2(side, 0.0f), kOpen.pos_m);
+      t.set_command(vec2(side, 0.0f), kOpen);
       t.grow(GrowBudget::expansions(1500));
       EXPECT_GT(reach_along(t, vec2(side, 0)), 0.3f) << strategy_name(s) << " side " << side;
       const int child = t.select_child();
@@ -196,11 +196,11 @@ TEST(MotionTree, OnlyResortingStrategiesReorderWhenTheCommandChanges) {
   for (Strategy s : {Strategy::kCommand, Strategy::kCommandNoResort}) {
     MotionTree t(lib, arena.world, config_for(s));
     t.reset(walk_segment(lib), kOpen);
-    t.set_command(vec2(1, 0), kOpen.pos_m);
+    t.set_command(vec2(1, 0), kOpen);
     t.grow(GrowBudget::expansions(400));
     std::vector<float> before;
     t.for_each_node([&](int, const MotionTreeNode& n) { before.push_back(n.grow_priority); });
-    t.set_command(vec2(-1, 0), kOpen.pos_m);
+    t.set_command(vec2(-1, 0), kOpen);
     std::vector<float> after;
     t.for_each_node([&](int, const MotionTreeNode& n) { after.push_back(n.grow_priority); });
     if (s == Strategy::kCommand)
