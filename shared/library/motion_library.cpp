@@ -2,6 +2,7 @@
 
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
+#include "library/pose_check.hpp"
 
 #include <xxhash.h>
 
@@ -129,6 +130,8 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
     lib.root_track.insert(lib.root_track.end(), track.begin(), track.end());
   }
 
+  lib.head_top_margin_m = head_top_margin_m(lib.skeleton);
+
   // Per segment: relative movement and body volumes in the segment's own frame.
   lib.segment_motion.clear();
   lib.segment_shapes.clear();
@@ -144,7 +147,7 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
     for (int f = s.first_frame; f <= s.end_frame; ++f) {
       fk_pose(lib.skeleton, clip.frame_pos(f), clip.frame_rot(f), global, global_rot);
       for (vec3& p : global) p = to_local.apply(p);
-      volumes.push_back(body_volume_from_pose(global));
+      volumes.push_back(body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
     }
     lib.segment_shapes.push_back(make_segment_shape(volumes));
   }

@@ -33,6 +33,8 @@ struct MotionLibrary {
   MotionGraph graph;
 
   // Compiled data.
+  float body_margin_m = 0.08f;      ///< Body cylinder grown sideways past the joints (flesh).
+  float head_top_margin_m = 0.15f;  ///< ... and above the highest joint (pose_check.hpp).
   std::vector<vec3> clip_forward_axis;   ///< Pelvis-local forward axis per clip.
   std::vector<int> clip_track_offset;    ///< Start of each clip's frames in root_track.
   std::vector<Placement> root_track;     ///< Root placement per clip frame, clip space.

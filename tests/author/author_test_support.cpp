@@ -65,6 +65,26 @@ float transition_gap_m(const Clip& a, const Clip& b) {
   return worst;
 }
 
+Chain chain_clips(const std::vector<std::string>& names) {
+  Chain chain;
+  chain.num_joints = library().skeleton.num_joints();
+  Placement at_start{};
+  for (size_t i = 0; i < names.size(); ++i) {
+    const Clip& clip = find_clip(names[i])->clip;
+    const std::vector<vec3> pos = clip_positions(clip);
+    const std::vector<Placement> track = clip_root_track(clip);
+    const Placement place = at_start.compose(track.front().inverse());
+    const int frames = i + 1 < names.size() ? clip.num_frames - 1 : clip.num_frames;
+    for (int f = 0; f < frames; ++f) {
+      for (int j = 0; j < clip.num_joints; ++j) chain.pos.push_back(place.apply(at(pos, clip, f, j)));
+      chain.root.push_back(place.compose(track[f]));
+      ++chain.num_frames;
+    }
+    at_start = place.compose(track.back());
+  }
+  return chain;
+}
+
 float max_joint_height(const Clip& clip, int j) {
   const std::vector<vec3> pos = clip_positions(clip);
   float h = -std::numeric_limits<float>::max();

@@ -45,6 +45,21 @@ SkateReport foot_skate(const Clip& clip);
 /// placement.
 float transition_gap_m(const Clip& a, const Clip& b);
 
+/// Clips played one after the other the way the motion graph plays them: each placed at the
+/// previous one's last root placement, its last frame (the boundary pose) left to the next clip
+/// (the final clip's is kept). World joint positions per frame [frame * J + joint] and root
+/// placements per frame.
+struct Chain {
+  std::vector<vec3> pos;
+  std::vector<Placement> root;
+  int num_joints = 0;
+  int num_frames = 0;
+  vec3 at(int frame, int joint_index) const {
+    return pos[static_cast<size_t>(frame) * num_joints + joint_index];
+  }
+};
+Chain chain_clips(const std::vector<std::string>& names);
+
 /// Highest point of the head top over the clip (metres) and its lowest.
 float max_joint_height(const Clip& clip, int joint_index);
 float min_joint_height(const Clip& clip, int joint_index);

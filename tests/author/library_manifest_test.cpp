@@ -42,13 +42,19 @@ TEST(DefaultLibrary, IsDeterministic) {
 }
 
 TEST(DefaultLibrary, HasEveryRequiredClip) {
+  // Steps come on either foot: walk_l is a left step (right-foot strike -> left-foot strike).
+  for (const char* step :
+       {"walk", "walk_slow", "walk_turn_left_22", "walk_turn_right_22", "walk_turn_left_45",
+        "walk_turn_right_45", "walk_to_slow", "slow_to_walk", "walk_start", "walk_stop", "run",
+        "run_turn_left_22", "run_turn_right_22", "walk_to_run", "run_to_walk", "crouch_walk",
+        "crouch_walk_turn_left_22", "crouch_walk_turn_right_22", "crouch_walk_start",
+        "crouch_walk_stop", "walk_to_crouch_walk", "crouch_walk_to_walk"})
+    for (const char* foot : {"_l", "_r"})
+      EXPECT_NE(find_clip(std::string(step) + foot), nullptr) << step << foot;
   for (const char* name :
-       {"idle", "walk_slow", "walk", "walk_turn_left_45", "walk_turn_right_45", "walk_turn_left_90",
-        "walk_turn_right_90", "run", "walk_start", "walk_stop", "crouch_down", "crouch_idle",
-        "crouch_walk", "stand_up", "side_step_left", "side_step_right", "walk_to_crouch_walk",
-        "crouch_walk_to_walk", "crouch_walk_turn_left_45", "crouch_walk_turn_right_45",
-        "run_turn_left_45", "run_turn_right_45", "walk_to_run", "run_to_walk", "fight_stance",
-        "idle_to_stance", "stance_to_idle"})
+       {"idle", "crouch_idle", "crouch_down", "stand_up", "side_step_left", "side_step_right",
+        "idle_turn_left_90", "idle_turn_right_90", "idle_turn_180", "crouch_idle_turn_left_90",
+        "crouch_idle_turn_right_90", "fight_stance", "idle_to_stance", "stance_to_idle"})
     EXPECT_NE(find_clip(name), nullptr) << name;
 }
 
@@ -149,32 +155,96 @@ TEST(Manifest, GraphIsStronglyConnected) {
   }
 }
 
+// Clips reachable from `from` in at most `depth` transitions (not counting `from` itself).
+std::set<std::string> within(const std::string& from, int depth) {
+  const auto next = successor_map(false);
+  std::set<std::string> seen, frontier{from};
+  for (int d = 0; d < depth; ++d) {
+    std::set<std::string> further;
+    for (const std::string& n : frontier) {
+      const auto it = next.find(n);
+      if (it == next.end()) continue;
+      for (const std::string& m : it->second)
+        if (seen.insert(m).second) further.insert(m);
+    }
+    frontier = further;
+  }
+  return seen;
+}
+
 TEST(Manifest, IsRichEnoughToSteer) {
   const auto next = successor_map(false);
-  const auto& from_walk = next.at("walk");
-  for (const char* name : {"walk", "walk_slow", "walk_turn_left_45", "walk_turn_right_45",
-                           "walk_turn_left_90", "walk_turn_right_90", "walk_stop", "walk_to_run",
-                           "walk_to_crouch_walk"})
-    EXPECT_TRUE(from_walk.count(name)) << "walk -> " << name;
-  for (const char* turn : {"walk_turn_left_45", "walk_turn_right_90", "walk_slow"})
-    EXPECT_TRUE(next.at(turn).count("walk")) << turn << " -> walk";
-  EXPECT_TRUE(next.at("idle").count("walk_start"));
-  EXPECT_TRUE(next.at("walk_start").count("walk"));
-  EXPECT_TRUE(next.at("walk_stop").count("idle"));
-  EXPECT_TRUE(next.at("run").count("run_turn_left_45"));
-  EXPECT_TRUE(next.at("run_to_walk").count("walk"));
-  EXPECT_TRUE(next.at("walk_to_crouch_walk").count("crouch_walk"));
-  EXPECT_TRUE(next.at("crouch_walk").count("crouch_walk_to_walk"));
-  EXPECT_TRUE(next.at("crouch_walk").count("crouch_walk_turn_left_45"));
+  // From any walking step (either foot, straight or turning): the next step can go straight,
+  // turn either way by 22.5 or 45 deg, stop, or start running / crouching; within two clips the
+  // slow walk, the run and the crouch-walk themselves.
+  for (const char* step : {"walk_l", "walk_r", "walk_turn_left_45_l", "walk_turn_right_22_r",
+                           "walk_start_l", "walk_start_r", "slow_to_walk_l", "run_to_walk_r",
+                           "crouch_walk_to_walk_l"}) {
+    SCOPED_TRACE(step);
+    const std::string same = std::string(step).back() == 'l' ? "_l" : "_r";
+    const std::string other = same == "_l" ? "_r" : "_l";
+    const auto& one = next.at(step);
+    for (const char* name :
+         {"walk", "walk_turn_left_22", "walk_turn_right_22", "walk_turn_left_45",
+          "walk_turn_right_45", "walk_stop", "walk_to_run", "walk_to_crouch_walk", "walk_to_slow"})
+      EXPECT_TRUE(one.count(name + other)) << "-> " << name << other;
+    const std::set<std::string> two = within(step, 2);
+    for (const char* gait : {"walk_slow", "run", "crouch_walk"})  // steps alternate feet
+      EXPECT_TRUE(two.count(gait + same)) << "within two: " << gait << same;
+    EXPECT_TRUE(two.count("idle"));
+  }
+  // Steps alternate feet: a left step is followed by right steps only.
+  for (const std::string& n : next.at("walk_l")) EXPECT_EQ(n.back(), 'r') << "walk_l -> " << n;
+  EXPECT_TRUE(next.at("idle").count("walk_start_l"));
+  EXPECT_TRUE(next.at("idle").count("walk_start_r"));
+  EXPECT_TRUE(next.at("walk_stop_l").count("idle"));
+  EXPECT_TRUE(next.at("run_l").count("run_turn_left_22_r"));
+  EXPECT_TRUE(next.at("run_l").count("run_turn_right_22_r"));
+  EXPECT_TRUE(next.at("run_l").count("run_to_walk_r"));
+  EXPECT_TRUE(next.at("walk_to_crouch_walk_l").count("crouch_walk_r"));
+  EXPECT_TRUE(next.at("crouch_walk_l").count("crouch_walk_to_walk_r"));
+  EXPECT_TRUE(next.at("crouch_walk_l").count("crouch_walk_turn_left_22_r"));
+  EXPECT_TRUE(next.at("crouch_walk_l").count("crouch_walk_stop_r"));
+  // Turning round in a dead end: from standing, and from the last step of a walk.
+  for (const char* turn : {"idle_turn_left_90", "idle_turn_right_90", "idle_turn_180"}) {
+    EXPECT_TRUE(next.at("idle").count(turn)) << turn;
+    EXPECT_TRUE(next.at(turn).count("walk_start_l")) << turn;
+    EXPECT_TRUE(next.at("walk_stop_r").count(turn)) << turn;
+  }
+  EXPECT_TRUE(next.at("crouch_idle").count("crouch_idle_turn_left_90"));
+  EXPECT_TRUE(next.at("crouch_walk_stop_l").count("crouch_idle_turn_right_90"));
+  // The fight is entered and left through the idle.
   EXPECT_TRUE(next.at("idle").count("idle_to_stance"));
   EXPECT_TRUE(next.at("idle_to_stance").count("fight_stance"));
   EXPECT_TRUE(next.at("fight_stance").count("stance_to_idle"));
   EXPECT_TRUE(next.at("stance_to_idle").count("idle"));
   // Strikes: out of and back into the stance, nothing else.
+  int strikes = 0;
   for (const AuthoredClip& c : library().clips) {
     if (!c.strike) continue;
+    ++strikes;
     EXPECT_TRUE(next.at("fight_stance").count(c.clip.name)) << c.clip.name;
     EXPECT_EQ(next.at(c.clip.name), std::set<std::string>{"fight_stance"}) << c.clip.name;
+  }
+  EXPECT_EQ(strikes, 16);
+}
+
+TEST(Manifest, EveryLocomotionClipReachesATurnEachWayWithinTwoTransitions) {
+  // The controller's latency budget: whatever the avatar is doing, a clip that turns left and
+  // one that turns right are at most two boundaries away.
+  for (const AuthoredClip& c : library().clips) {
+    if (!(c.tags & kTagLocomotion)) continue;
+    bool left = false, right = false;
+    for (const std::string& n : within(c.clip.name, 2)) {
+      const AuthoredClip* t = find_clip(n);
+      if (!(t->tags & kTagTurn)) continue;
+      const std::vector<Placement> track = clip_root_track(t->clip);
+      const float turn = track.back().heading_rad - track.front().heading_rad;
+      left |= turn > radians(10.0f);
+      right |= turn < -radians(10.0f);
+    }
+    EXPECT_TRUE(left) << c.clip.name << ": no left turn within two transitions";
+    EXPECT_TRUE(right) << c.clip.name << ": no right turn within two transitions";
   }
 }
 

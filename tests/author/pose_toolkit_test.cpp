@@ -126,5 +126,35 @@ TEST(FootTimeline, PlantedFootIsPinnedAndRollsAboutTheBall) {
   EXPECT_GT(sample_foot(keys, 0.65f, g, 1.0f, 0.2f, shape, root).ankle_m.y, g.ankle_height_m + 0.04f);
 }
 
+TEST(FootTimeline, APivotTurnsTheFootAboutItsPinnedBall) {
+  // A turning step's stance foot: flat, then heel up and pivoting 45 deg on the ball of the foot,
+  // the ball never moving.
+  const FootGeometry g;
+  FootPlant p;
+  p.ankle_xz_m = vec2(-0.05f, 0.35f);
+  p.yaw_rad = -0.12f;
+  p.land_s = 0.0f;
+  p.heel_off_s = 0.3f;
+  p.lift_s = 0.6f;
+  p.lift_pitch_rad = 0.6f;
+  p.pivot_rad = radians(45.0f);
+  p.pivot_end_s = 0.5f;
+  const FootTimeline keys = {plant_key(p)};
+  const auto shape = [](float) { return SwingShape{}; };
+  const auto root = [](float) { return Placement{}; };
+  const vec2 ball = p.ball_xz(g);
+  for (float t = 0.0f; t <= 0.55f; t += 0.01f) {
+    const FootSample s = sample_foot(keys, t, g, -1.0f, 0.2f, shape, root);
+    const vec3 b = s.ankle_m + quat_ypr(s.yaw_rad, s.pitch_rad, 0) * g.ball_from_ankle_m;
+    EXPECT_LT(glm::length(ground(b) - ball), 1e-5f) << t;
+    EXPECT_NEAR(b.y, g.ankle_height_m + g.ball_from_ankle_m.y, 1e-5f) << t;
+    if (t <= 0.3f) { EXPECT_FLOAT_EQ(s.yaw_rad, p.yaw_rad); }
+    if (t >= 0.5f) { EXPECT_NEAR(s.yaw_rad, p.yaw_rad + p.pivot_rad, 1e-6f); }
+  }
+  // The pivot eases in and out: no yaw speed as it starts or ends.
+  EXPECT_NEAR(p.yaw_at(0.301f), p.yaw_rad, 1e-4f);
+  EXPECT_NEAR(p.yaw_at(0.499f), p.yaw_rad + p.pivot_rad, 1e-4f);
+}
+
 }  // namespace
 }  // namespace foresight::author

@@ -1,6 +1,6 @@
 #include "lookahead/lookahead_avatar.hpp"
 
-#include "anim/fk.hpp"
+#include "library/pose_check.hpp"
 #include "lookahead_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -13,17 +13,6 @@ namespace {
 using test::default_library;
 using test::loaded_scene;
 
-// The shown pose, re-checked from FK independently of the precomputed segment volumes.
-bool shown_pose_collides(const MotionLibrary& lib, const CollisionWorld& world,
-                         const PlaybackState& state) {
-  Pose pose;
-  playback_pose(lib, state, pose);
-  std::vector<vec3> pos(static_cast<size_t>(lib.num_joints()));
-  std::vector<quat> rot(static_cast<size_t>(lib.num_joints()));
-  fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, pos, rot);
-  return frame_collides(world, body_volume_from_pose(pos));
-}
-
 struct RunStats {
   int colliding_frames = 0;
   vec2 displacement{0.0f};
@@ -32,12 +21,13 @@ struct RunStats {
 RunStats run(LookaheadAvatar& avatar, const MotionLibrary& lib, const CollisionWorld& world,
              const ControlInput& input, int frames, int64_t expansions_per_frame) {
   RunStats stats;
+  PoseCheckScratch scratch;
   const vec2 start = avatar.root().pos_m;
   for (int f = 0; f < frames; ++f) {
     avatar.set_input(input);
     avatar.grow(GrowBudget::expansions(expansions_per_frame));
     avatar.step();
-    stats.colliding_frames += shown_pose_collides(lib, world, avatar.playback());
+    stats.colliding_frames += shown_pose_collides(lib, world, avatar.playback(), scratch);
   }
   stats.displacement = avatar.root().pos_m - start;
   return stats;

@@ -1,6 +1,7 @@
 #pragma once
 // Subcommands of foresight-motion. Each returns the process exit code.
 #include "library/library_source.hpp"
+#include "lookahead/replay.hpp"
 
 #include <cstdint>
 #include <string>
@@ -14,10 +15,18 @@ struct PlayOptions {
   bool verbose = false;  ///< Also print every frame's root placement.
 };
 
+struct SteerOptions {
+  std::string recording;  ///< Recording .json (its scene is loaded).
+  std::string strategy = "command";
+  int64_t expansions_per_frame = ReplayConfig{}.expansions_per_frame;  // what recordings are made with
+  double max_seconds = 300;
+};
+
 int command_info(const MotionSource& source);
 int command_graph(const MotionSource& source);
 int command_export_bvh(const MotionSource& source, const std::string& out_dir);
 int command_play(const MotionSource& source, const PlayOptions& options);
+int command_steer(const MotionSource& source, const SteerOptions& options);
 
 /// Loads the library or prints why not (false).
 bool load_library_or_report(const MotionSource& source, MotionLibrary& lib);

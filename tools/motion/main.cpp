@@ -3,6 +3,7 @@
 //   foresight-motion graph  --motions DIR [--threshold M]
 //   foresight-motion export-bvh OUT_DIR [--motions DIR]
 //   foresight-motion play [--scene maze] [--seconds 30] [--seed 1] [--motions DIR]
+//   foresight-motion steer --recording FILE [--strategy command] [--expansions 300]
 #include "commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -44,10 +45,23 @@ int main(int argc, char** argv) {
   play->add_option("--seed", play_options.seed, "Seed of the successor choice");
   play->add_flag("--verbose", play_options.verbose, "Print every frame");
 
+  tools::SteerOptions steer_options;
+  auto* steer = app.add_subcommand(
+      "steer", "Replay a recorded player steering an avatar with look-ahead, headless");
+  steer->add_option("--recording", steer_options.recording, "Recording .json")
+      ->required()
+      ->check(CLI::ExistingFile);
+  steer->add_option("--strategy", steer_options.strategy, "Exploration strategy (name or 0-4)");
+  steer->add_option("--expansions", steer_options.expansions_per_frame,
+                    "Look-ahead expansions per frame")->check(CLI::Range(0, 100000000));
+  steer->add_option("--max-seconds", steer_options.max_seconds, "Give up after this long")
+      ->check(CLI::Range(1.0, 36000.0));
+
   CLI11_PARSE(app, argc, argv);
   source.motions_dir = motions;
   if (*info) return tools::command_info(source);
   if (*graph) return tools::command_graph(source);
   if (*export_bvh) return tools::command_export_bvh(source, out_dir);
+  if (*steer) return tools::command_steer(source, steer_options);
   return tools::command_play(source, play_options);
 }

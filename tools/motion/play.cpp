@@ -3,9 +3,9 @@
 // collision-free continuation of kLookAheadSteps more segments exists (a depth-first probe; the
 // feasible motion tree of the look-ahead issue replaces this). Every played frame is then re-checked from its FK pose, independently of
 // the precomputed volumes, and the run fails if any collides.
-#include "anim/fk.hpp"
 #include "commands.hpp"
 #include "library/playback.hpp"
+#include "library/pose_check.hpp"
 #include "world/collision_check.hpp"
 #include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
@@ -74,9 +74,7 @@ int command_play(const MotionSource& source, const PlayOptions& o) {
   std::mt19937_64 rng(o.seed);
   const float fps = lib.clips[lib.graph.segments[start_segment].clip].fps;
   const long long total_frames = static_cast<long long>(o.seconds * fps);
-  Pose pose;
-  std::vector<vec3> joints(static_cast<size_t>(lib.num_joints()));
-  std::vector<quat> joint_rot(static_cast<size_t>(lib.num_joints()));
+  PoseCheckScratch check;
   std::vector<int> feasible;
   std::vector<float> weights;
   long long colliding_frames = 0, segments_played = 1;
@@ -116,15 +114,7 @@ int command_play(const MotionSource& source, const PlayOptions& o) {
                   at.pos_m.y, degrees(at.heading_rad), feasible.size(), succ.size());
     }
     // Independent re-check of the pose actually shown.
-    playback_pose(lib, state, pose);
-    fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, joints, joint_rot);
-    // Clips play at the ground height under their start (the terrain rule of collision_check.hpp).
-    float ground_m = 0.0f;
-    ground_height_at(world, state.segment_start.pos_m, ground_m);
-    BodyVolume volume = body_volume_from_pose(joints);
-    volume.y_min_m += ground_m;
-    volume.y_max_m += ground_m;
-    if (frame_collides(world, volume, ground_m)) ++colliding_frames;
+    if (shown_pose_collides(lib, world, state, check)) ++colliding_frames;
     const Placement now = playback_root(lib, state);
     distance_m += glm::length(now.pos_m - previous.pos_m);
     previous = now;

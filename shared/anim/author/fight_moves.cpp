@@ -2,6 +2,7 @@
 
 #include "anim/author/easing.hpp"
 #include "anim/author/key_track.hpp"
+#include "anim/author/standing_specs.hpp"
 #include "graph/motion_graph.hpp"
 
 #include <algorithm>
@@ -191,11 +192,12 @@ BodyPose kick_pose(const Skeleton& s, const Rig& rig, const FootGeometry& g, con
 }  // namespace
 
 LocomotionSpec fight_stance_spec(const FootGeometry& g) {
+  // A short loop (the fighter can strike at every boundary): one light bounce on the balls of the
+  // feet, a boxer's 2.5 Hz.
   StandingMotion m;
-  m.bounce_m = 0.012f;
-  m.bounce_cycles = 2;
-  m.breathe_rad = 0.015f;
-  return standing_spec("fight_stance", kTagFight, FamilyId::kFight, 45.0f / kFps, m, g);
+  m.bounce_m = 0.008f;
+  m.bounce_cycles = 1;
+  return standing_spec("fight_stance", kTagFight, FamilyId::kFight, 12.0f / kFps, m, g);
 }
 
 BodyPose stance_pose(const Skeleton& s, const Rig& rig, const FootGeometry& g) {
@@ -206,7 +208,7 @@ BodyPose stance_pose(const Skeleton& s, const Rig& rig, const FootGeometry& g) {
 LocomotionSpec idle_to_stance_spec(const FootGeometry& g) {
   // Left foot steps forward, then the right foot steps back and turns out; the guard comes up.
   LocomotionSpec spec = transition_spec("idle_to_stance", kTagFight, FamilyId::kIdle,
-                                        FamilyId::kFight, 24.0f / kFps, Placement{}, 0, 0, g);
+                                        FamilyId::kFight, 24.0f / kFps, Placement{}, g);
   set_step(spec, kLeft, 0.04f, 0.16f, 0.40f);
   set_step(spec, kRight, 0.30f, 0.42f, 0.62f);
   return spec;
@@ -214,7 +216,7 @@ LocomotionSpec idle_to_stance_spec(const FootGeometry& g) {
 
 LocomotionSpec stance_to_idle_spec(const FootGeometry& g) {
   LocomotionSpec spec = transition_spec("stance_to_idle", kTagFight, FamilyId::kFight,
-                                        FamilyId::kIdle, 24.0f / kFps, Placement{}, 0, 0, g);
+                                        FamilyId::kIdle, 24.0f / kFps, Placement{}, g);
   set_step(spec, kRight, 0.04f, 0.16f, 0.40f);
   set_step(spec, kLeft, 0.30f, 0.42f, 0.62f);
   return spec;

@@ -42,7 +42,8 @@ struct SegmentEnd {
 };
 
 SegmentEnd lift_state(const FootPlant& p, const FootGeometry& g) {
-  return {rolled_ankle(g, p.ankle_xz_m, p.yaw_rad, p.lift_pitch_rad), p.yaw_rad, 0.0f, p.lift_s,
+  const float yaw = p.yaw_at(p.lift_s);
+  return {rolled_ankle(g, p.ankle_xz_m, p.yaw_rad, yaw, p.lift_pitch_rad), yaw, 0.0f, p.lift_s,
           p.lift_pitch_rad};
 }
 SegmentEnd land_state(const FootPlant& p, const FootGeometry& g) {
@@ -62,6 +63,18 @@ float load_of(const FootPlant& p, float t, float load_in_s) {
 }
 
 }  // namespace
+
+float FootPlant::yaw_at(float t) const {
+  if (pivot_rad == 0.0f || t <= heel_off_s) return yaw_rad;
+  // Eased in and out: the pivot starts as the heel leaves the floor and is complete (turning no
+  // more) at the boundary it leads to.
+  const float span = std::max(pivot_end_s - heel_off_s, 1e-4f);
+  return yaw_rad + pivot_rad * smoothstep01((t - heel_off_s) / span);
+}
+
+vec2 FootPlant::ball_xz(const FootGeometry& g) const {
+  return ankle_xz_m + rotate_ground(ground(g.ball_from_ankle_m), yaw_rad);
+}
 
 float sole_clearance(const FootGeometry& g, vec3 ankle, float yaw, float pitch, float toe_bend) {
   const quat q = foot_rot(yaw, pitch);
@@ -84,10 +97,10 @@ float swing_bump(float u) {
   return std::sin(kPi * w);
 }
 
-vec3 rolled_ankle(const FootGeometry& g, vec2 ankle_xz_m, float yaw_rad, float pitch_rad) {
+vec3 rolled_ankle(const FootGeometry& g, vec2 ankle_xz_m, float flat_yaw_rad, float yaw_rad,
+                  float pitch_rad) {
   const vec3 flat = from_ground(ankle_xz_m, g.ankle_height_m);
-  const quat yaw = foot_rot(yaw_rad, 0.0f);
-  const vec3 ball = flat + yaw * g.ball_from_ankle_m;
+  const vec3 ball = flat + foot_rot(flat_yaw_rad, 0.0f) * g.ball_from_ankle_m;
   return ball + foot_rot(yaw_rad, pitch_rad) * -g.ball_from_ankle_m;
 }
 
@@ -112,8 +125,8 @@ FootSample sample_foot(const FootTimeline& keys, float t, const FootGeometry& g,
     const FootPlant& p = k.plant;
     const float q = p.heel_off_s < p.lift_s ? (t - p.heel_off_s) / (p.lift_s - p.heel_off_s) : 0.0f;
     const float pitch = t > p.heel_off_s ? p.lift_pitch_rad * heel_roll(q) : 0.0f;
-    out.ankle_m = rolled_ankle(g, p.ankle_xz_m, p.yaw_rad, pitch);
-    out.yaw_rad = p.yaw_rad;
+    out.yaw_rad = p.yaw_at(t);
+    out.ankle_m = rolled_ankle(g, p.ankle_xz_m, p.yaw_rad, out.yaw_rad, pitch);
     out.pitch_rad = pitch;
     out.toe_bend_rad = -pitch;
     out.load = load_of(p, t, load_in_s);

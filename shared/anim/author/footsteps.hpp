@@ -1,6 +1,7 @@
 #pragma once
 // Foot timelines: per foot, a time-sorted list of plants (the foot pinned on the floor, optionally
-// rolling onto the ball of the foot before lift-off) and vias (a swing caught mid-air at a clip
+// rolling onto the ball of the foot before lift-off, and pivoting about the ball while the heel is
+// up) and vias (a swing caught mid-air at a clip
 // boundary). Between two keys the foot swings on a smooth lifted curve. Sampling is pure, so a
 // planted foot is exactly still in world space whatever the pelvis does.
 #include "math/types.hpp"
@@ -29,6 +30,15 @@ struct FootPlant {
   float heel_off_s = kOpenFutureS;  ///< The heel starts rising (rolling about the ball).
   float lift_s = kOpenFutureS;      ///< The ball leaves the floor.
   float lift_pitch_rad = 0.5f;      ///< Heel-up pitch reached at lift-off.
+  /// Yaw the foot turns about the ball of the foot while the heel is up: eased in from heel_off_s,
+  /// complete at pivot_end_s (a turning step ends with its rear foot pivoted to the new heading).
+  float pivot_rad = 0.0f;
+  float pivot_end_s = kOpenFutureS;
+
+  /// The foot's yaw at time t (the pivot applied).
+  float yaw_at(float t_s) const;
+  /// The ball of the foot on the floor (fixed while the foot is planted).
+  vec2 ball_xz(const FootGeometry& g) const;
 };
 
 /// A swing passing through a fixed state at `time_s` (a clip boundary caught mid-swing). `u` is the
@@ -75,8 +85,10 @@ float swing_progress(float u, float ease_exponent);
 /// Vertical lift profile of a swing (0 at both ends, 1 at the top, which comes early).
 float swing_bump(float u);
 
-/// Ankle position while the foot rolls about the ball by `pitch_rad` (heel up) from a flat plant.
-vec3 rolled_ankle(const FootGeometry& g, vec2 ankle_xz_m, float yaw_rad, float pitch_rad);
+/// Ankle position while the foot rolls about the ball by `pitch_rad` (heel up) from a flat plant
+/// whose ankle is at ankle_xz_m with yaw flat_yaw_rad, having pivoted about the ball to yaw_rad.
+vec3 rolled_ankle(const FootGeometry& g, vec2 ankle_xz_m, float flat_yaw_rad, float yaw_rad,
+                  float pitch_rad);
 
 /// Where the character's root frame is at a time.
 using PlacementAt = std::function<Placement(float)>;

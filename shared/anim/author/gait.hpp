@@ -5,10 +5,12 @@
 //
 // Per frame: the style is blended between the start and end families; feet are sampled from their
 // timelines (planted feet are pinned in world space); the pelvis follows the root path, sways over
-// the loaded foot, twists with the stride, lists, and is kept low enough for both legs to reach
-// (soft minimum with the nominal height: this is what makes a walking pelvis dip at double support);
-// the chest counter-rotates, the head looks along the path, and the arms swing opposite the legs
-// (or hold the guard). Legs and arms are then solved by two-bone IK (solve_body_pose).
+// the loaded foot, yaws with the swinging leg (square to the path whenever both balls of the feet
+// are still, so at every walking foot strike), lists, and is kept low enough for both legs to
+// reach (soft minimum with the nominal height: this is what makes a walking pelvis dip at double
+// support); the chest counter-rotates against the legs, the head looks along the path, and the
+// arms swing opposite the legs (or hold the guard). Legs and arms are then solved by two-bone IK
+// (solve_body_pose). The clip builders are in step_spec.hpp and standing_specs.hpp.
 #include "anim/author/body_pose.hpp"
 #include "anim/author/gait_style.hpp"
 #include "anim/author/root_path.hpp"
@@ -42,47 +44,8 @@ struct LocomotionSpec {
   int num_frames(float fps) const;
 };
 
-/// The foot key covering a family boundary at time t_s, for a root frame placed at `root`:
-/// a plant (moving families: with the times near the boundary fixed by the family, the far ones at
-/// their neutral values for the caller to override) or a via for a foot caught mid-swing.
-FootKey boundary_key(const GaitFamily& family, int side, const Placement& root, float t_s,
-                     const FootGeometry& geometry);
-
-/// A plant on a path: the ankle at `offset_m` (x: to the left, y: ahead) in the root frame at
-/// time anchor_s, the foot yawed by `yaw_rad` relative to it.
-FootPlant path_plant(const RootPath& path, float anchor_s, vec2 offset_m, float yaw_rad);
-
-/// Timings of one gait cycle clip as fractions of its duration (interior events only; events near
-/// the boundaries follow the families).
-struct CycleTiming {
-  float left_lift = -1.0f;   ///< < 0: the start family's stance fraction.
-  float right_land = 0.5f;
-  float right_lift = -1.0f;  ///< Only when the end family runs (a foot mid-air at the end).
-};
-
-/// One gait cycle (two steps) from a start-family boundary to an end-family boundary `end` away,
-/// with the given speeds at both ends.
-LocomotionSpec cycle_spec(const std::string& name, uint32_t tags, FamilyId start, FamilyId end_family,
-                          float duration_s, Placement end, float start_speed_mps,
-                          float end_speed_mps, const FootGeometry& geometry,
-                          CycleTiming timing = {});
-
-/// A standing loop of a standing family (both feet planted throughout).
-LocomotionSpec standing_spec(const std::string& name, uint32_t tags, FamilyId family,
-                             float duration_s, StandingMotion motion, const FootGeometry& geometry);
-
-/// A clip between two families made of single steps: each foot starts on its start-family key and
-/// ends on its end-family key; set_step then says when each foot moves.
-LocomotionSpec transition_spec(const std::string& name, uint32_t tags, FamilyId start,
-                               FamilyId end_family, float duration_s, Placement end,
-                               float start_speed_mps, float end_speed_mps,
-                               const FootGeometry& geometry);
-/// Times one step of `side` in a transition_spec: the heel roll and lift-off from its first plant
-/// (< 0: keep the family's) and the touch-down on its last plant.
-void set_step(LocomotionSpec& spec, int side, float heel_off_s, float lift_s, float land_s);
-
-/// The end placement of an arc `length_m` long turning by `turn_rad` (positive: left).
-Placement arc_end(float length_m, float turn_rad);
+/// The style at time t (blended from the start family's to the end family's).
+GaitStyle style_at(const LocomotionSpec& spec, float t_s);
 
 /// The body at time t.
 BodyPose gait_pose(const Skeleton& skeleton, const Rig& rig, const LocomotionSpec& spec, float t_s);

@@ -15,14 +15,15 @@ GaitStyle idle_style() {
   s.pelvis_height_m = 0.955f;
   s.pelvis_pitch_rad = 0.03f;
   s.sway_gain = 0.25f;
-  s.twist_rad_per_m = 0.1f;
+  s.twist_rad = 0.05f;
+  s.chest_counter_rad_per_m = 0.08f;
   s.list_rad = 0.03f;
   s.spine_pitch_rad = 0.02f;
   s.head_pitch_rad = 0.05f;
   s.arm_swing_rad_per_m = 0.4f;
   s.elbow_rad = 0.2f;
   s.lift_pitch_rad = 0.3f;
-  s.weight_accept_s = 0.2f;
+  s.weight_accept_s = 0.15f;
   s.swing = {0.05f, 1.0f, 0.05f, 0.015f};
   return s;
 }
@@ -40,10 +41,10 @@ GaitStyle run_style() {
   s.stance_dip_m = 0.06f;
   s.reach_fraction = 0.985f;
   s.sway_gain = 0.25f;
-  s.twist_rad_per_m = 0.1f;
+  s.twist_rad = 0.02f;  // Runs keep the pelvis nearly square (the shoulders turn).
+  s.chest_counter_rad_per_m = 0.09f;
   s.list_rad = 0.04f;
   s.spine_pitch_rad = 0.1f;
-  s.counter_rotation = 0.9f;
   s.head_pitch_rad = 0.0f;
   s.arm_swing_rad_per_m = 0.45f;
   s.arm_flex_rad = 0.15f;
@@ -62,10 +63,10 @@ GaitStyle crouch_style() {
   s.pelvis_back_m = 0.06f;
   s.pelvis_pitch_rad = 0.45f;
   s.sway_gain = 0.4f;
-  s.twist_rad_per_m = 0.08f;
+  s.twist_rad = 0.07f;
+  s.chest_counter_rad_per_m = 0.04f;
   s.list_rad = 0.02f;
   s.spine_pitch_rad = 0.6f;
-  s.counter_rotation = 0.5f;
   s.head_pitch_rad = 0.35f;
   s.arm_swing_rad_per_m = 0.35f;
   s.arm_flex_rad = 0.35f;
@@ -82,11 +83,11 @@ GaitStyle fight_style() {
   s.pelvis_height_m = 0.89f;
   s.pelvis_pitch_rad = 0.1f;
   s.sway_gain = 0.5f;
-  s.twist_rad_per_m = 0.0f;
+  s.twist_rad = 0.0f;
+  s.chest_counter_rad_per_m = 0.0f;
   s.list_rad = 0.0f;
   s.spine_pitch_rad = 0.12f;
   s.spine_yaw_rad = -0.3f;
-  s.counter_rotation = 0.0f;
   s.head_pitch_rad = 0.1f;
   s.arm_swing_rad_per_m = 0.0f;
   s.guard = 1.0f;
@@ -105,28 +106,47 @@ GaitFamily make_idle() {
   return f;
 }
 
-GaitFamily make_walk() {
+// Walking: the pelvis midway between the feet at the strike (foot_forward = stride * (0.5 -
+// stance_fraction) / 2), toes out as far as standing (so starts and stops need no pivot), heel-off
+// 0.2 s before the strike: the window in which a turning step pivots its rear foot on the ball.
+// Events the boundary fixes fall on whole frames (heel-off 6 frames before, lift-off 3 after), so
+// a rolling foot never spends a frame half-rolled.
+GaitFamily make_walk(FamilyId id, int lead) {
   GaitFamily f;
-  f.id = FamilyId::kWalk;
-  f.name = "walk";
+  f.id = id;
+  f.name = lead == kLeft ? "walk_L" : "walk_R";
   f.style = walk_style();
   f.moving = true;
+  f.lead_side = lead;
   f.cycle_s = 30.0f / 30.0f;
   f.stride_m = 1.40f;
   f.stance_fraction = 0.60f;
-  f.heel_off_fraction = 0.25f;
+  f.heel_off_fraction = 0.30f;
   f.step_width_m = 0.055f;
-  f.foot_forward_m = -0.07f;  // Heel strike with the pelvis midway between the feet.
-  f.toe_out_rad = 0.08f;
+  f.foot_forward_m = -0.07f;
+  f.toe_out_rad = 0.12f;
   return f;
 }
 
-GaitFamily make_run() {
+// Slow walking: shorter strides at the same cadence (1.0 m/s), a family of its own so that its
+// steps stay half a second long.
+GaitFamily make_slow(FamilyId id, int lead) {
+  GaitFamily f = make_walk(id, lead);
+  f.name = lead == kLeft ? "slow_L" : "slow_R";
+  f.stride_m = 1.00f;
+  f.stance_fraction = 0.62f;
+  f.heel_off_fraction = 0.32f;  // Heel-off 0.2 s before the boundary, as in the walk.
+  f.foot_forward_m = -0.06f;
+  return f;
+}
+
+GaitFamily make_run(FamilyId id, int lead) {
   GaitFamily f;
-  f.id = FamilyId::kRun;
-  f.name = "run";
+  f.id = id;
+  f.name = lead == kLeft ? "run_L" : "run_R";
   f.style = run_style();
   f.moving = true;
+  f.lead_side = lead;
   f.cycle_s = 22.0f / 30.0f;
   f.stride_m = 2.20f;
   f.stance_fraction = 0.36f;
@@ -145,19 +165,20 @@ GaitFamily make_crouch_idle() {
   return f;
 }
 
-GaitFamily make_crouch_walk() {
+GaitFamily make_crouch_walk(FamilyId id, int lead) {
   GaitFamily f;
-  f.id = FamilyId::kCrouchWalk;
-  f.name = "crouch_walk";
+  f.id = id;
+  f.name = lead == kLeft ? "crouch_walk_L" : "crouch_walk_R";
   f.style = crouch_style();
   f.moving = true;
-  f.cycle_s = 34.0f / 30.0f;
+  f.lead_side = lead;
+  f.cycle_s = 32.0f / 30.0f;
   f.stride_m = 0.80f;
   f.stance_fraction = 0.65f;
-  f.heel_off_fraction = 0.2f;
+  f.heel_off_fraction = 0.3375f;  // Heel-off 0.2 s (6 frames) before the boundary.
   f.step_width_m = 0.10f;
   f.foot_forward_m = -0.06f;
-  f.toe_out_rad = 0.15f;
+  f.toe_out_rad = 0.12f;
   return f;
 }
 
@@ -182,11 +203,11 @@ GaitStyle mix(const GaitStyle& a, const GaitStyle& b, float w) {
   o.stance_dip_m = lerp(a.stance_dip_m, b.stance_dip_m, w);
   o.reach_fraction = lerp(a.reach_fraction, b.reach_fraction, w);
   o.sway_gain = lerp(a.sway_gain, b.sway_gain, w);
-  o.twist_rad_per_m = lerp(a.twist_rad_per_m, b.twist_rad_per_m, w);
+  o.twist_rad = lerp(a.twist_rad, b.twist_rad, w);
   o.list_rad = lerp(a.list_rad, b.list_rad, w);
   o.spine_pitch_rad = lerp(a.spine_pitch_rad, b.spine_pitch_rad, w);
   o.spine_yaw_rad = lerp(a.spine_yaw_rad, b.spine_yaw_rad, w);
-  o.counter_rotation = lerp(a.counter_rotation, b.counter_rotation, w);
+  o.chest_counter_rad_per_m = lerp(a.chest_counter_rad_per_m, b.chest_counter_rad_per_m, w);
   o.head_pitch_rad = lerp(a.head_pitch_rad, b.head_pitch_rad, w);
   o.arm_swing_rad_per_m = lerp(a.arm_swing_rad_per_m, b.arm_swing_rad_per_m, w);
   o.arm_flex_rad = lerp(a.arm_flex_rad, b.arm_flex_rad, w);
@@ -206,8 +227,31 @@ GaitStyle mix(const GaitStyle& a, const GaitStyle& b, float w) {
 
 const GaitFamily& gait_family(FamilyId id) {
   static const std::array<GaitFamily, kNumFamilies> families = {
-      make_idle(), make_walk(), make_run(), make_crouch_idle(), make_crouch_walk(), make_fight()};
+      make_idle(),
+      make_walk(FamilyId::kWalkL, kLeft), make_walk(FamilyId::kWalkR, kRight),
+      make_slow(FamilyId::kSlowL, kLeft), make_slow(FamilyId::kSlowR, kRight),
+      make_run(FamilyId::kRunL, kLeft), make_run(FamilyId::kRunR, kRight),
+      make_crouch_idle(),
+      make_crouch_walk(FamilyId::kCrouchWalkL, kLeft),
+      make_crouch_walk(FamilyId::kCrouchWalkR, kRight),
+      make_fight()};
   return families[static_cast<size_t>(id)];
+}
+
+FamilyId strike_family(FamilyId gait, int lead_side) {
+  const bool left = lead_side == kLeft;
+  switch (gait) {
+    case FamilyId::kWalkL: case FamilyId::kWalkR:
+      return left ? FamilyId::kWalkL : FamilyId::kWalkR;
+    case FamilyId::kSlowL: case FamilyId::kSlowR:
+      return left ? FamilyId::kSlowL : FamilyId::kSlowR;
+    case FamilyId::kRunL: case FamilyId::kRunR:
+      return left ? FamilyId::kRunL : FamilyId::kRunR;
+    case FamilyId::kCrouchWalkL: case FamilyId::kCrouchWalkR:
+      return left ? FamilyId::kCrouchWalkL : FamilyId::kCrouchWalkR;
+    default:
+      return gait;
+  }
 }
 
 vec3 guard_wrist_m(int side) {

@@ -10,6 +10,9 @@
 
 namespace foresight::author {
 
+/// Reference speed of GaitStyle::twist_rad.
+inline constexpr float kTwistSpeedMps = 5.0f;
+
 struct GaitStyle {
   float pelvis_height_m = 0.955f;   ///< Nominal pelvis height (legs permitting).
   float pelvis_back_m = 0.0f;       ///< Pelvis behind the root (balances a forward-bent trunk).
@@ -17,11 +20,16 @@ struct GaitStyle {
   float stance_dip_m = 0.0f;        ///< Pelvis drop with a loaded foot under the hip (running).
   float reach_fraction = 0.993f;    ///< Max hip-ankle distance over leg length (IK is exact below 0.995).
   float sway_gain = 0.5f;           ///< Fraction of the loaded foot's side offset the pelvis follows.
-  float twist_rad_per_m = 0.12f;    ///< Pelvis yaw per metre the feet are apart fore-aft.
+  /// Pelvis yaw with one ball of the foot moving forward at kTwistSpeedMps and the other still:
+  /// the hip of a swinging leg comes forward with it (yaw grows with the square of the speed, so
+  /// it sets in and dies out smoothly), and the pelvis is square at every walking foot strike.
+  float twist_rad = 0.08f;
   float list_rad = 0.05f;           ///< Pelvis roll up on the loaded side.
   float spine_pitch_rad = 0.03f;    ///< Chest bend forward relative to the pelvis.
   float spine_yaw_rad = 0.0f;       ///< Static chest turn (fighting stance blades the shoulders).
-  float counter_rotation = 0.8f;    ///< Chest turns against the pelvis twist by this fraction.
+  /// Chest yaw (relative to the root) per metre the left foot leads the right: the shoulders
+  /// turn against the legs, in phase with the arm swing.
+  float chest_counter_rad_per_m = 0.096f;
   float head_pitch_rad = 0.08f;     ///< Gaze below the horizon.
   float arm_swing_rad_per_m = 0.5f; ///< Shoulder swing per metre the opposite foot leads.
   float arm_flex_rad = 0.05f;       ///< Arms held this far forward.
@@ -37,12 +45,22 @@ struct GaitStyle {
 
 GaitStyle mix(const GaitStyle& a, const GaitStyle& b, float w);
 
-enum class FamilyId { kIdle, kWalk, kRun, kCrouchIdle, kCrouchWalk, kFight };
-inline constexpr int kNumFamilies = 6;
+/// Boundary families. Every gait comes as a mirror pair: ..L boundaries are left-foot strikes,
+/// ..R boundaries right-foot strikes, and every step clip goes from one to the other.
+enum class FamilyId {
+  kIdle,
+  kWalkL, kWalkR,
+  kSlowL, kSlowR,
+  kRunL, kRunR,
+  kCrouchIdle,
+  kCrouchWalkL, kCrouchWalkR,
+  kFight,
+};
+inline constexpr int kNumFamilies = 11;
 
-/// Boundary convention of a moving family (see docs/DEFAULT_LIBRARY.md): at the boundary the left
+/// Boundary convention of a moving family (see docs/DEFAULT_LIBRARY.md): at the boundary the lead
 /// foot has just touched down, flat, `stance_fraction * stride / 2 + foot_forward` ahead of the
-/// root; the right foot is either still planted behind (stance_fraction > 0.5: double support)
+/// root; the other foot is either still planted behind (stance_fraction > 0.5: double support)
 /// or in the air mid-swing (running). A standing family has both feet planted at fixed spots.
 struct GaitFamily {
   FamilyId id = FamilyId::kIdle;
@@ -50,6 +68,7 @@ struct GaitFamily {
   GaitStyle style;
   bool moving = false;
   // Moving families.
+  int lead_side = 0;             ///< The foot that has just struck at a boundary (kLeft/kRight).
   float cycle_s = 1.0f;          ///< Nominal gait cycle (two steps).
   float stride_m = 1.0f;         ///< Distance covered per cycle at the boundary pace.
   float stance_fraction = 0.6f;  ///< Part of the cycle a foot is on the floor.
@@ -65,6 +84,10 @@ struct GaitFamily {
 };
 
 const GaitFamily& gait_family(FamilyId id);
+
+/// The moving family of the same gait whose boundary is a strike of `lead_side`; standing
+/// families map to themselves.
+FamilyId strike_family(FamilyId gait, int lead_side);
 
 /// Guard hand placement (chest axes, relative to the shoulder joint) for a side.
 vec3 guard_wrist_m(int side);

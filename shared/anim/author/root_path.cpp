@@ -22,7 +22,7 @@ Placement RootPath::at(float t_s) const {
   const vec2 p = hermite(vec2(0.0f), start_tangent_, end_.pos_m, end_tangent_, s);
   // Heading eases in and out: every clip starts and ends without turning, so any two clips can
   // follow each other.
-  return {p, end_.heading_rad * smoothstep01(s)};
+  return {p, heading_.empty() ? end_.heading_rad * smoothstep01(s) : heading_.at(t_s)};
 }
 
 }  // namespace foresight::author

@@ -1,0 +1,41 @@
+#include "library/pose_check.hpp"
+
+#include "anim/fk.hpp"
+#include "world/collision_check.hpp"
+#include "world/terrain.hpp"
+
+#include <cctype>
+
+namespace foresight {
+
+float head_top_margin_m(const Skeleton& skeleton) {
+  for (int j = 1; j < skeleton.num_joints(); ++j) {
+    if (!skeleton.is_end_site[j]) continue;
+    std::string parent = skeleton.joint_names[skeleton.parents[j]];
+    for (char& c : parent) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (parent.find("head") != std::string::npos && glm::length(skeleton.rest_offsets_m[j]) >= 0.05f)
+      return 0.03f;
+  }
+  return 0.15f;
+}
+
+bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& world,
+                         const PlaybackState& state, PoseCheckScratch& scratch) {
+  playback_pose(library, state, scratch.pose);
+  scratch.joint_pos_m.resize(static_cast<size_t>(library.num_joints()));
+  scratch.joint_rot.resize(static_cast<size_t>(library.num_joints()));
+  fk_pose(library.skeleton, scratch.pose.local_pos_m, scratch.pose.local_rot, scratch.joint_pos_m,
+          scratch.joint_rot);
+  const Placement to_local = state.segment_start.inverse();
+  for (vec3& p : scratch.joint_pos_m) p = to_local.apply(p);
+  BodyVolume volume = place(body_volume_from_pose(scratch.joint_pos_m, library.body_margin_m,
+                                                  library.head_top_margin_m),
+                            state.segment_start);
+  float ground_m = 0.0f;
+  ground_height_at(world, state.segment_start.pos_m, ground_m);
+  volume.y_min_m += ground_m;
+  volume.y_max_m += ground_m;
+  return frame_collides(world, volume, ground_m);
+}
+
+}  // namespace foresight

@@ -1,0 +1,31 @@
+#pragma once
+// The collision check of the pose actually shown (FK of the played, blended pose), independent of
+// the precomputed segment volumes the tree trusts: what replays, demos and tests use to prove that
+// an avatar never overlaps the scene.
+#include "library/playback.hpp"
+#include "world/collision_world.hpp"
+
+#include <vector>
+
+namespace foresight {
+
+/// How far above its highest joint the body reaches: little when the skeleton ends in a head-top
+/// End Site (the default library), a head's height when the head joint is its top (e.g. the
+/// Bandai captures, whose head End Site has a zero offset).
+float head_top_margin_m(const Skeleton& skeleton);
+
+/// Reusable buffers, so checking every frame allocates nothing.
+struct PoseCheckScratch {
+  Pose pose;
+  std::vector<vec3> joint_pos_m;
+  std::vector<quat> joint_rot;
+};
+
+/// True when the shown pose of `state` overlaps the scene. The bounding cylinder is fitted in the
+/// segment's own frame, exactly as motion_library_compile fits the precomputed volumes, then
+/// placed (a disc fitted to a world-axis box would differ at 45 degree headings); the clip plays
+/// at the ground height under its segment's start.
+bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& world,
+                         const PlaybackState& state, PoseCheckScratch& scratch);
+
+}  // namespace foresight

@@ -1,0 +1,564 @@
+#include "lookahead/recording.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <initializer_list>
+#include <system_error>
+
+namespace foresight {
+namespace {
+
+using json = nlohmann::json;
+
+// Samples are converted as the parser meets them and then dropped from the DOM (see
+// parse_impl), so memory stays proportional to the samples kept, not to nlohmann's tree. This
+// caps the values anywhere else in the file (a sample has 11 parse events).
+constexpr std::size_t kMaxParseEvents = 16 * kMaxRecordingSamples + 4096;
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+constexpr double kMaxAngle_deg = 1.0e6;
+
+// ---------------------------------------------------------------- number text
+
+// The one conversion from file degrees to stored radians; the writer searches for the shortest
+// text that this maps back onto the stored value.
+float rad_from_deg(double deg) { return static_cast<float>(deg * kDegToRad); }
+
+std::string shortest_double(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+// Shortest float text, checked against the parse path (text -> double -> float): double rounding
+// could in principle differ from strtof, and then the exact double of the float is written.
+std::string shortest_float(float v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, r.ptr);
+  if (static_cast<float>(std::strtod(s.c_str(), nullptr)) != v) s = shortest_double(static_cast<double>(v));
+  return s;
+}
+
+// The shortest text of the angle in degrees whose parse gives back exactly `rad`: the degrees
+// rounded to 0..9 decimals, else the exact double (within 1e-16 of the float's value, far inside
+// half a float ulp, so it always maps back).
+std::string degrees_text(float rad) {
+  const double deg = static_cast<double>(rad) / kDegToRad;
+  double scale = 1.0;
+  for (int decimals = 0; decimals <= 9; ++decimals, scale *= 10.0) {
+    const double candidate = std::round(deg * scale) / scale;
+    if (rad_from_deg(candidate) == rad) return shortest_double(candidate);
+  }
+  return shortest_double(deg);
+}
+
+std::string number_text(double v) { return std::isfinite(v) ? shortest_double(v) : "null"; }
+std::string number_text(float v) { return std::isfinite(v) ? shortest_float(v) : "null"; }
+std::string angle_text(float rad) { return std::isfinite(rad) ? degrees_text(rad) : "null"; }
+
+std::string string_text(const std::string& s) {
+  return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// ---------------------------------------------------------------- reading
+
+std::string describe(const json& j) {
+  switch (j.type()) {
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return std::string("a boolean (") + (j.get<bool>() ? "true" : "false") + ")";
+    case json::value_t::string: {
+      std::string s = j.get_ref<const std::string&>();
+      if (s.size() > 40) s = s.substr(0, 40) + "...";
+      return "a string (\"" + s + "\")";
+    }
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float: return "a number (" + shortest_double(j.get<double>()) + ")";
+    case json::value_t::object: return "an object";
+    case json::value_t::array: return "an array of " + std::to_string(j.size());
+    default: return "an unsupported value";
+  }
+}
+
+// A JSON path built only when an error is reported: "samples[12].dir", "start.pos", "version".
+struct Path {
+  Path(std::string_view p = {}, long i = -1, std::string_view f = {}) : parent(p), index(i), field(f) {}
+  std::string_view parent;
+  long index;  // -1: no index
+  std::string_view field;
+
+  std::string str() const {
+    std::string s(parent);
+    if (index >= 0) s += "[" + std::to_string(index) + "]";
+    if (!field.empty()) s += (s.empty() ? "" : ".") + std::string(field);
+    return s;
+  }
+  Path operator/(std::string_view f) const { return {parent, index, f}; }
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string_view source) : source_(source) {}
+  const std::string& error() const { return error_; }
+  bool failed() const { return !error_.empty(); }
+
+  bool fail(const Path& path, std::string_view reason) {
+    if (error_.empty()) {
+      const std::string p = path.str();
+      error_ = source_ + ": " + (p.empty() ? "" : p + ": ") + std::string(reason);
+    }
+    return false;
+  }
+
+  // Unknown keys are refused, all of them named; keys starting with '_' are notes.
+  bool check_keys(const json& obj, const Path& path, std::initializer_list<std::string_view> allowed) {
+    std::string unknown;
+    int count = 0;
+    for (const auto& item : obj.items()) {
+      const std::string& key = item.key();
+      if (!key.empty() && key[0] == '_') continue;
+      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+      if (count < 8) unknown += (unknown.empty() ? "\"" : ", \"") + key + "\"";
+      ++count;
+    }
+    if (count == 0) return true;
+    std::string names;
+    for (std::string_view a : allowed) names += (names.empty() ? "" : ", ") + std::string(a);
+    return fail(path, std::string(count == 1 ? "unknown field " : "unknown fields ") + unknown +
+                          (count > 8 ? " and " + std::to_string(count - 8) + " more" : "") +
+                          " (allowed: " + names + ")");
+  }
+
+  bool object(const json& j, const Path& path) {
+    return j.is_object() || fail(path, "expected an object, got " + describe(j));
+  }
+
+  // obj[key]; a missing member is an error when required, else out = nullptr.
+  bool member(const json& obj, const Path& path, std::string_view key, bool required, const json*& out) {
+    const auto it = obj.find(key);
+    out = it == obj.end() ? nullptr : &*it;
+    return out != nullptr || !required || fail(path / key, "missing required field");
+  }
+
+  bool number(const json& j, const Path& path, double lo, double hi, double& out) {
+    if (!j.is_number()) return fail(path, "expected a number, got " + describe(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) return fail(path, "is not a finite number");
+    if (v < lo || v > hi)
+      return fail(path, shortest_double(v) + " is out of range [" + shortest_double(lo) + ", " +
+                            shortest_double(hi) + "]");
+    out = v;
+    return true;
+  }
+
+  bool number_f(const json& j, const Path& path, double lo, double hi, float& out) {
+    double v = 0;
+    if (!number(j, path, lo, hi, v)) return false;
+    out = static_cast<float>(v);
+    return true;
+  }
+
+  // An array of n numbers within +-limit; `shape` names it in messages ("[x, z]").
+  bool numbers(const json& j, const Path& path, std::size_t n, double limit, std::string_view shape,
+               float* out) {
+    if (!j.is_array() || j.size() != n)
+      return fail(path, "expected an array of " + std::to_string(n) + " numbers " +
+                            std::string(shape) + ", got " + describe(j));
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!j[i].is_number())
+        return fail(path, "component " + std::to_string(i) + ": expected a number, got " + describe(j[i]));
+      const double v = j[i].get<double>();
+      if (!std::isfinite(v) || v < -limit || v > limit)
+        return fail(path, "component " + std::to_string(i) + ": " + shortest_double(v) +
+                              " is out of range [" + shortest_double(-limit) + ", " +
+                              shortest_double(limit) + "]");
+      out[i] = static_cast<float>(v);
+    }
+    return true;
+  }
+
+  bool string(const json& j, const Path& path, std::string& out) {
+    if (!j.is_string()) return fail(path, "expected a string, got " + describe(j));
+    out = j.get<std::string>();
+    return true;
+  }
+
+ private:
+  std::string source_;
+  std::string error_;
+};
+
+// One sample; `previous_t` is the last accepted sample's time (< 0 for the first).
+bool read_sample(Reader& r, const json& j, long index, double previous_t, CommandSample& out) {
+  const Path path{"samples", index, {}};
+  if (!r.object(j, path)) return false;
+  if (!r.check_keys(j, path, {"t", "dir", "camera_yaw_deg", "camera_pos", "crouch"})) return false;
+  const json* v = nullptr;
+  if (!r.member(j, path, "t", true, v) || !r.number(*v, path / "t", 0.0, kMaxRecordingTime_s, out.t_s))
+    return false;
+  if (previous_t < 0 && out.t_s != 0.0)
+    return r.fail(path / "t", "the first sample must be at t = 0, got " + shortest_double(out.t_s));
+  if (previous_t >= 0 && !(out.t_s > previous_t))
+    return r.fail(path / "t", shortest_double(out.t_s) + (out.t_s == previous_t ? " repeats" : " is before") +
+                                  " the previous sample's t (" + shortest_double(previous_t) +
+                                  "): times must increase strictly");
+  float dir[2] = {0, 0};
+  if (!r.member(j, path, "dir", true, v) || !r.numbers(*v, path / "dir", 2, 1e6, "[x, y]", dir))
+    return false;
+  out.input.camera_dir = vec2(dir[0], dir[1]);
+  // The same test the avatar applies (control_input_valid), so every parsed sample is accepted.
+  if (!(glm::dot(out.input.camera_dir, out.input.camera_dir) <= 1.0001f))
+    return r.fail(path / "dir", "length " + shortest_float(glm::length(out.input.camera_dir)) +
+                                    " is more than 1");
+  double yaw_deg = 0;
+  if (!r.member(j, path, "camera_yaw_deg", true, v) ||
+      !r.number(*v, path / "camera_yaw_deg", -kMaxAngle_deg, kMaxAngle_deg, yaw_deg))
+    return false;
+  out.input.camera_yaw_rad = rad_from_deg(yaw_deg);
+  out.camera_pos_m = vec3(0.0f);
+  if (!r.member(j, path, "camera_pos", false, v)) return false;
+  if (v != nullptr && !r.numbers(*v, path / "camera_pos", 3, kMaxRecordingCoord_m, "[x, y, z]", &out.camera_pos_m.x))
+    return false;
+  out.input.crouch = false;
+  if (!r.member(j, path, "crouch", false, v)) return false;
+  if (v != nullptr) {
+    if (!v->is_boolean()) return r.fail(path / "crouch", "expected true or false, got " + describe(*v));
+    out.input.crouch = v->get<bool>();
+  }
+  return true;
+}
+
+bool read_header(Reader& r, const json& root) {
+  const Path top{};
+  if (!r.object(root, top)) return false;
+  const json* v = nullptr;
+  std::string format;
+  if (!r.member(root, top, "format", true, v) || !r.string(*v, {"format"}, format)) return false;
+  if (format != kRecordingFormat)
+    return r.fail({"format"}, "expected \"" + std::string(kRecordingFormat) + "\", got \"" + format + "\"");
+  if (!r.member(root, top, "version", true, v)) return false;
+  if (!v->is_number_integer() && !v->is_number_unsigned())
+    return r.fail({"version"}, "expected an integer, got " + describe(*v));
+  if (v->get<double>() != kRecordingVersion)
+    return r.fail({"version"}, "unsupported version " + shortest_double(v->get<double>()) +
+                                   " (this build reads version " + std::to_string(kRecordingVersion) + ")");
+  return true;
+}
+
+bool read_body(Reader& r, const json& root, Recording& rec) {
+  const Path top{};
+  if (!r.check_keys(root, top, {"format", "version", "scene", "name", "library_hash", "start", "goal", "samples"}))
+    return false;
+  const json* v = nullptr;
+  if (!r.member(root, top, "library_hash", false, v)) return false;
+  if (v != nullptr) {
+    std::string hex;
+    if (!r.string(*v, {"library_hash"}, hex)) return false;
+    const auto res = std::from_chars(hex.data(), hex.data() + hex.size(), rec.library_hash, 16);
+    if (hex.empty() || hex.size() > 16 || res.ec != std::errc() || res.ptr != hex.data() + hex.size())
+      return r.fail({"library_hash"}, "expected 1 to 16 hexadecimal digits, got \"" + hex + "\"");
+  }
+  if (!r.member(root, top, "scene", true, v) || !r.string(*v, {"scene"}, rec.scene)) return false;
+  if (rec.scene.empty()) return r.fail({"scene"}, "must not be empty");
+  if (!r.member(root, top, "name", false, v)) return false;
+  if (v != nullptr && !r.string(*v, {"name"}, rec.name)) return false;
+
+  const json* start = nullptr;
+  if (!r.member(root, top, "start", true, start) || !r.object(*start, {"start"}) ||
+      !r.check_keys(*start, {"start"}, {"pos", "heading_deg"}))
+    return false;
+  double heading_deg = 0;
+  if (!r.member(*start, {"start"}, "pos", true, v) ||
+      !r.numbers(*v, {"start", -1, "pos"}, 2, kMaxRecordingCoord_m, "[x, z]", &rec.start_pos_m.x) ||
+      !r.member(*start, {"start"}, "heading_deg", true, v) ||
+      !r.number(*v, {"start", -1, "heading_deg"}, -kMaxAngle_deg, kMaxAngle_deg, heading_deg))
+    return false;
+  rec.start_heading_rad = rad_from_deg(heading_deg);
+
+  const json* goal = nullptr;
+  if (!r.member(root, top, "goal", true, goal) || !r.object(*goal, {"goal"}) ||
+      !r.check_keys(*goal, {"goal"}, {"pos", "radius"}))
+    return false;
+  if (!r.member(*goal, {"goal"}, "pos", true, v) ||
+      !r.numbers(*v, {"goal", -1, "pos"}, 2, kMaxRecordingCoord_m, "[x, z]", &rec.goal_pos_m.x) ||
+      !r.member(*goal, {"goal"}, "radius", false, v))
+    return false;
+  if (v != nullptr && !r.number_f(*v, {"goal", -1, "radius"}, 1e-3, 1000.0, rec.goal_radius_m)) return false;
+  return true;
+}
+
+/// 1-based line and column of a byte offset, as editors count them.
+void line_column(std::string_view text, std::size_t byte, std::size_t& line, std::size_t& column) {
+  line = 1;
+  column = 1;
+  const std::size_t end = std::min(byte, text.size());
+  for (std::size_t i = 0; i < end; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+}
+
+bool parse_impl(std::string_view text, std::string_view source, Recording& out, std::string& error) {
+  if (text.size() > kMaxRecordingFileBytes) {
+    error = std::string(source) + ": text is " + std::to_string(text.size()) + " bytes, more than the " +
+            std::to_string(kMaxRecordingFileBytes) + " allowed";
+    return false;
+  }
+  Recording rec;
+  Reader samples_reader(source);  // the first sample error, reported after the header checks
+  std::string top_key;
+  int samples_keys = 0;
+  bool samples_is_array = false;
+  bool too_many_events = false, too_many_samples = false;
+  std::size_t events = 0;
+  long sample_index = 0;
+
+  // Samples (depth 2 inside the top-level "samples" array) are read and validated as soon as
+  // each one is complete, then discarded from the DOM.
+  const json::parser_callback_t callback = [&](int depth, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::key) {
+      if (depth == 1) {
+        top_key = parsed.get<std::string>();
+        if (top_key == "samples") ++samples_keys;
+      }
+      return !too_many_events;
+    }
+    if (event == json::parse_event_t::array_start && depth == 1 && top_key == "samples")
+      samples_is_array = true;
+    if (event == json::parse_event_t::value || event == json::parse_event_t::object_end ||
+        event == json::parse_event_t::array_end)
+      if (++events > kMaxParseEvents) too_many_events = true;
+    if (too_many_events) return false;
+    const bool in_samples = depth == 2 && top_key == "samples" && samples_is_array && samples_keys == 1;
+    const bool element_end = event == json::parse_event_t::object_end ||
+                             event == json::parse_event_t::array_end ||
+                             event == json::parse_event_t::value;
+    if (!in_samples || !element_end) return true;
+    const long index = sample_index++;
+    if (samples_reader.failed()) return false;
+    if (rec.samples.size() >= kMaxRecordingSamples) {
+      too_many_samples = true;
+      return false;
+    }
+    CommandSample s;
+    const double previous = rec.samples.empty() ? -1.0 : rec.samples.back().t_s;
+    if (read_sample(samples_reader, parsed, index, previous, s)) rec.samples.push_back(s);
+    return false;
+  };
+
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end(), callback);
+  } catch (const json::parse_error& e) {
+    // nlohmann reports the offset of the byte after the error; point at the byte itself.
+    std::size_t line = 0, column = 0;
+    line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);
+    std::string what = e.what();
+    if (const std::size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
+    error = std::string(source) + ": invalid JSON at line " + std::to_string(line) + ", column " +
+            std::to_string(column) + ": " + what;
+    return false;
+  } catch (const json::out_of_range& e) {
+    // A literal too large for a double ("1e400"): nlohmann quotes it but gives no position.
+    std::string what = e.what();
+    if (const std::size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    std::string where;
+    const std::size_t q0 = what.find('\'');
+    const std::size_t q1 = q0 == std::string::npos ? q0 : what.find('\'', q0 + 1);
+    if (q1 != std::string::npos) {
+      const std::size_t at = text.find(what.substr(q0 + 1, q1 - q0 - 1));
+      if (at != std::string_view::npos) {
+        std::size_t line = 0, column = 0;
+        line_column(text, at, line, column);
+        where = " at line " + std::to_string(line) + ", column " + std::to_string(column);
+      }
+    }
+    error = std::string(source) + ": invalid JSON" + where + ": " + what + " (not a finite number)";
+    return false;
+  }
+  if (too_many_events) {
+    error = std::string(source) + ": more than " + std::to_string(kMaxParseEvents) + " JSON values";
+    return false;
+  }
+  Reader r(source);
+  if (!read_header(r, root)) {
+    error = r.error();
+    return false;
+  }
+  if (samples_keys > 1) {
+    error = std::string(source) + ": samples: appears more than once";
+    return false;
+  }
+  if (samples_reader.failed()) {
+    error = samples_reader.error();
+    return false;
+  }
+  if (too_many_samples) {
+    error = std::string(source) + ": samples: more than the " + std::to_string(kMaxRecordingSamples) +
+            " samples allowed";
+    return false;
+  }
+  if (!read_body(r, root, rec)) {
+    error = r.error();
+    return false;
+  }
+  const json* samples = nullptr;
+  if (!r.member(root, {}, "samples", true, samples)) {
+    error = r.error();
+    return false;
+  }
+  if (!samples_is_array) {
+    r.fail({"samples"}, "expected an array, got " + describe(*samples));
+    error = r.error();
+    return false;
+  }
+  if (rec.samples.empty()) {
+    error = std::string(source) + ": samples: needs at least one sample";
+    return false;
+  }
+  out = std::move(rec);
+  return true;
+}
+
+}  // namespace
+
+bool recording_parse(std::string_view json_text, std::string_view source_name, Recording& recording,
+                     std::string& error) {
+  // Anything escaping the reader (allocation failure on a huge file, an exception we did not
+  // foresee) becomes an error message: a broken file must never take a program down.
+  try {
+    return parse_impl(json_text, source_name, recording, error);
+  } catch (const std::bad_alloc&) {
+    error = std::string(source_name) + ": out of memory while reading the recording";
+  } catch (const std::exception& e) {
+    error = std::string(source_name) + ": " + e.what();
+  } catch (...) {
+    error = std::string(source_name) + ": unknown error while reading the recording";
+  }
+  return false;
+}
+
+bool recording_load(const std::filesystem::path& path, Recording& recording, std::string& error) {
+  try {
+    const std::string source = path.filename().string();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      error = path.string() + ": " + (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+      return false;
+    }
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) {
+      error = path.string() + ": cannot read size: " + ec.message();
+      return false;
+    }
+    if (size > kMaxRecordingFileBytes) {
+      error = source + ": file is " + std::to_string(size) + " bytes, more than the " +
+              std::to_string(kMaxRecordingFileBytes) + " allowed";
+      return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      error = path.string() + ": cannot open for reading";
+      return false;
+    }
+    std::string text(static_cast<std::size_t>(size), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (in.bad()) {
+      error = path.string() + ": read error";
+      return false;
+    }
+    return recording_parse(text, source, recording, error);
+  } catch (const std::exception& e) {
+    error = path.string() + ": " + e.what();
+  } catch (...) {
+    error = path.string() + ": unknown error while loading the recording";
+  }
+  return false;
+}
+
+std::string recording_write(const Recording& rec) {
+  std::string s;
+  s.reserve(256 + rec.samples.size() * 110);
+  s += "{\n  \"format\": \"" + std::string(kRecordingFormat) + "\",\n";
+  s += "  \"version\": " + std::to_string(kRecordingVersion) + ",\n";
+  s += "  \"scene\": " + string_text(rec.scene) + ",\n";
+  s += "  \"name\": " + string_text(rec.name) + ",\n";
+  if (rec.library_hash != 0) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(rec.library_hash));
+    s += "  \"library_hash\": \"" + std::string(hex) + "\",\n";
+  }
+  s += "  \"start\": {\"pos\": [" + number_text(rec.start_pos_m.x) + ", " + number_text(rec.start_pos_m.y) +
+       "], \"heading_deg\": " + angle_text(rec.start_heading_rad) + "},\n";
+  s += "  \"goal\": {\"pos\": [" + number_text(rec.goal_pos_m.x) + ", " + number_text(rec.goal_pos_m.y) +
+       "], \"radius\": " + number_text(rec.goal_radius_m) + "},\n";
+  s += "  \"samples\": [";
+  for (std::size_t i = 0; i < rec.samples.size(); ++i) {
+    const CommandSample& c = rec.samples[i];
+    s += i == 0 ? "\n    " : ",\n    ";
+    s += "{\"t\": " + number_text(c.t_s);
+    s += ", \"dir\": [" + number_text(c.input.camera_dir.x) + ", " + number_text(c.input.camera_dir.y) + "]";
+    s += ", \"camera_yaw_deg\": " + angle_text(c.input.camera_yaw_rad);
+    s += ", \"camera_pos\": [" + number_text(c.camera_pos_m.x) + ", " + number_text(c.camera_pos_m.y) + ", " +
+         number_text(c.camera_pos_m.z) + "]";
+    s += std::string(", \"crouch\": ") + (c.input.crouch ? "true" : "false") + "}";
+  }
+  s += rec.samples.empty() ? "]\n}\n" : "\n  ]\n}\n";
+  return s;
+}
+
+bool recording_save(const std::filesystem::path& path, const Recording& recording, std::string& error) {
+  try {
+    const std::string text = recording_write(recording);
+    std::filesystem::path tmp = path;
+    tmp += ".tmp";
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) {
+        error = tmp.string() + ": cannot open for writing";
+        return false;
+      }
+      out.write(text.data(), static_cast<std::streamsize>(text.size()));
+      out.flush();
+      if (!out) {
+        error = tmp.string() + ": write error";
+        return false;
+      }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+      error = path.string() + ": cannot replace: " + ec.message();
+      std::filesystem::remove(tmp, ec);
+      return false;
+    }
+    return true;
+  } catch (const std::exception& e) {
+    error = path.string() + ": " + e.what();
+  } catch (...) {
+    error = path.string() + ": unknown error while saving the recording";
+  }
+  return false;
+}
+
+ControlInput recording_input_at(const Recording& recording, double t_s) {
+  const auto& s = recording.samples;
+  // First sample with t_s > t; the one before it holds.
+  const auto it = std::upper_bound(s.begin(), s.end(), t_s,
+                                   [](double t, const CommandSample& c) { return t < c.t_s; });
+  if (it == s.begin()) return ControlInput{};
+  return std::prev(it)->input;
+}
+
+}  // namespace foresight
