@@ -121,10 +121,10 @@ std::string svg_map_panels(const MapFigure& f) {
   const double top = 40 + 16.0 * static_cast<double>(f.notes.size());
   const size_t n = std::max<size_t>(f.panels.size(), 1);
   const double width = left + static_cast<double>(n) * (panel + gap);
-  const double height = top + 24 + panel + 20;
   const double view_w = std::max(f.view.max.x - f.view.min.x, 1e-6);
   const double view_h = std::max(f.view.max.y - f.view.min.y, 1e-6);
   const double scale = panel / std::max(view_w, view_h);
+  const double height = top + 24 + view_h * scale + 20;
 
   std::string out = header(width, height);
   out += text(left, 24, f.title, "start", 16, "font-weight=\"bold\"");

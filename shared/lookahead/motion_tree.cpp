@@ -14,6 +14,7 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
   order_.resize(static_cast<size_t>(config_.max_nodes));
   queue_.reserve(static_cast<size_t>(config_.max_nodes));
   visit_stack_.reserve(static_cast<size_t>(config_.max_nodes));
+  if (!library_.clips.empty()) segment_fps_ = library_.clips.front().fps;
   reset(0, Placement{});
 }
 
@@ -64,23 +65,33 @@ void MotionTree::free_subtree(int index) {
 }
 
 // Command matching (4.2): the angle between the command u and v_k, the movement from where the
-// avatar stands now to where node k ends, mapped to (0, 1) by g(a) = (1 + cos a) / 2. A zero
-// command means "stop": nodes that end close to the avatar, facing the way it faces, match best
-// (without the heading term, turning on the spot matches "stop" as well as standing still, and
-// an idle avatar fidgets round in circles).
+// avatar stands now to where node k ends, mapped to (0, 1) by g(a) = (1 + cos a) / 2. Two soft
+// terms beyond the paper, each in [0.5, 1]: facing (the node ends facing the command) and pace
+// (the segment moves at walking pace or faster). Without them a library with side-steps,
+// starts and stops matches a command as well by strafing or stop-and-go as by turning and
+// walking, because direction alone cannot tell them apart.
+// A zero command means "stop": nodes that end close to the avatar, facing the way it faces, match
+// best (without the heading term turning on the spot matches "stop" as well as standing still,
+// and an idle avatar fidgets round in circles).
 float MotionTree::base_match(const MotionTreeNode& n) const {
+  const SegmentMotion& motion = library_.segment_motion[static_cast<size_t>(n.segment)];
   const vec2 v = n.end_pos_m - avatar_.pos_m;
   const float v_len = glm::length(v);
+  const float end_heading = n.start.heading_rad + motion.end.heading_rad;
   float g;
   if (command_ == vec2(0.0f)) {
-    const float end_heading =
-        n.start.heading_rad + library_.segment_motion[static_cast<size_t>(n.segment)].end.heading_rad;
     const float turn = std::abs(wrap_angle(end_heading - avatar_.heading_rad));
     g = (1.0f - std::min(v_len / 2.0f, 1.0f)) * (1.0f - 0.8f * turn / kPi);
   } else if (v_len < 1e-3f) {
     g = 0.25f;  // standing still while asked to move: a poor but not impossible match
   } else {
-    g = 0.5f * (1.0f + glm::dot(command_, v) / v_len);
+    const float direction = 0.5f * (1.0f + glm::dot(command_, v) / v_len);
+    const vec2 facing(std::sin(end_heading), std::cos(end_heading));
+    const float facing_match = 0.75f + 0.25f * glm::dot(command_, facing);
+    const int frames = library_.graph.segments[static_cast<size_t>(n.segment)].num_frames();
+    const float speed_mps = glm::length(motion.end.pos_m) * segment_fps_ / static_cast<float>(frames);
+    const float pace = 0.5f + 0.5f * std::min(speed_mps / kWalkingPace_mps, 1.0f);
+    g = direction * facing_match * pace;
   }
   return std::clamp(g, config_.min_priority, config_.max_priority);
 }

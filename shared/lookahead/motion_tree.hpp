@@ -180,8 +180,10 @@ class MotionTree {
   int num_nodes_ = 0;
   int root_ = -1;
   uint32_t next_order_ = 0;
+  static constexpr float kWalkingPace_mps = 1.2f;  // at or above it a motion gets full pace credit
   vec2 command_{0.0f};
   Placement avatar_;
+  float segment_fps_ = 30.0f;
 };
 
 }  // namespace foresight

@@ -1,0 +1,174 @@
+// Navigation efficiency and responsiveness: replayed recordings and the closed loop.
+#include "lab/lab_experiments.hpp"
+
+#include "lab/lab_internal.hpp"
+#include "lookahead/recording_generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight::lab {
+
+using namespace detail;
+
+// ---- Navigation efficiency and responsiveness -----------------------------------------------
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double pos = std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(v.size() - 1);
+  const size_t i = static_cast<size_t>(std::floor(pos));
+  const size_t j = std::min(i + 1, v.size() - 1);
+  return v[i] + (pos - static_cast<double>(i)) * (v[j] - v[i]);
+}
+
+std::vector<ControllerSpec> lab_controllers(const MotionTreeConfig& base) {
+  std::vector<ControllerSpec> out;
+  for (int s = 0; s < kNumStrategies; ++s) {
+    MotionTreeConfig c = base;
+    c.strategy = static_cast<Strategy>(s);
+    out.push_back({"look-ahead " + strategy_label(s), c, true, true});
+  }
+  MotionTreeConfig greedy = base;
+  greedy.strategy = Strategy::kCommand;
+  out.push_back({"greedy depth-1", greedy_depth1_config(greedy), false, true});
+  out.push_back({"naive FSM", naive_fsm_config(base), false, false});
+  return out;
+}
+
+namespace {
+
+/// Adds one run to the rows, the controller's summary and the recording's verdicts.
+void add_run(NavigationResult& r, std::vector<double>& pooled, ControllerSummary& sum,
+             const ControllerSpec& spec, const std::string& label, const ReplayResult& res,
+             bool& naive_reached, bool& all_lookahead_reached) {
+  NavigationRow row;
+  row.recording = label;
+  row.controller = spec.name;
+  row.lookahead = spec.lookahead;
+  row.checks_collisions = spec.checks_collisions;
+  row.reached_goal = res.reached_goal;
+  row.time_to_goal_s = res.time_to_goal_s;
+  row.seconds = res.seconds;
+  row.fallbacks = res.fallbacks;
+  row.colliding_frames = res.colliding_frames;
+  row.mean_command_angle_deg = res.mean_command_angle_deg;
+  row.avg_tree_size = res.avg_tree_size;
+  row.response_ms_p50 = percentile(res.response_ms, 50);
+  row.response_ms_p95 = percentile(res.response_ms, 95);
+  row.responses = res.response_ms.size();
+  r.rows.push_back(row);
+
+  sum.recordings += 1;
+  sum.goals_reached += res.reached_goal ? 1 : 0;
+  sum.fallbacks += res.fallbacks;
+  sum.colliding_frames += res.colliding_frames;
+  pooled.insert(pooled.end(), res.response_ms.begin(), res.response_ms.end());
+  if (spec.checks_collisions) r.lookahead_collisions += res.colliding_frames;
+  if (spec.lookahead) all_lookahead_reached = all_lookahead_reached && res.reached_goal;
+  if (!spec.checks_collisions) naive_reached = res.reached_goal;
+}
+
+void finish_summary(NavigationResult& r, const std::vector<std::vector<double>>& pooled) {
+  for (size_t k = 0; k < r.summary.size(); ++k) {
+    r.summary[k].response_ms_p50 = percentile(pooled[k], 50);
+    r.summary[k].response_ms_p95 = percentile(pooled[k], 95);
+  }
+}
+
+}  // namespace
+
+NavigationResult run_navigation(const LabScene& lab, const LabOptions& options,
+                                const TransitionStatistics& statistics) {
+  NavigationResult r;
+  r.mode = "replay";
+  r.interval_s = options.navigation_interval_s;
+  r.expansions_per_frame = options.navigation_expansions_per_frame;
+  const std::vector<ControllerSpec> controllers = lab_controllers(options.tree);
+  std::vector<std::vector<double>> pooled(controllers.size());
+  for (const ControllerSpec& spec : controllers)
+    r.summary.push_back({spec.name, spec.lookahead, spec.checks_collisions, 0, 0, 0, 0, 0.0, 0.0});
+  const std::pair<const char*, const Recording*> recordings[] = {{"train", &lab.train},
+                                                                  {"eval", &lab.eval}};
+  for (const auto& [label, rec] : recordings) {
+    bool naive_reached = true;
+    bool all_lookahead_reached = true;
+    for (size_t k = 0; k < controllers.size(); ++k) {
+      const ControllerSpec& spec = controllers[k];
+      ReplayConfig c = lab_replay_config(spec.tree, r.interval_s, r.expansions_per_frame);
+      c.stop_at_goal = true;
+      if (uses_statistics(spec.tree.strategy)) c.statistics = statistics;
+      const ReplayResult res = replay_recording(lab.library, lab.world, *rec, c);
+      if (!res.error.empty() && r.error.empty()) r.error = res.error;
+      add_run(r, pooled[k], r.summary[k], spec, label, res, naive_reached, all_lookahead_reached);
+    }
+    if (!naive_reached) {
+      r.naive_stuck.push_back(label);
+      r.lookahead_reached_where_naive_stuck = r.lookahead_reached_where_naive_stuck && all_lookahead_reached;
+    }
+  }
+  finish_summary(r, pooled);
+  return r;
+}
+
+namespace {
+
+/// The scene point nearest to `p` (its name), for matching a recording's spawn and goal.
+template <typename Points>
+std::string nearest_name(const Points& points, vec2 p) {
+  std::string name;
+  float best = 0.0f;
+  for (const auto& q : points) {
+    const float d = glm::length(q.pos_m - p);
+    if (name.empty() || d < best) name = q.name, best = d;
+  }
+  return name;
+}
+
+}  // namespace
+
+NavigationResult run_closed_loop_navigation(const LabScene& lab, const LabOptions& options,
+                                            const TransitionStatistics& statistics) {
+  NavigationResult r;
+  r.mode = "closed-loop";
+  r.interval_s = 1.0 / 30.0;  // the generator's frame rate
+  r.expansions_per_frame = options.navigation_expansions_per_frame;
+  const std::vector<ControllerSpec> controllers = lab_controllers(options.tree);
+  std::vector<std::vector<double>> pooled(controllers.size());
+  for (const ControllerSpec& spec : controllers)
+    r.summary.push_back({spec.name, spec.lookahead, spec.checks_collisions, 0, 0, 0, 0, 0.0, 0.0});
+  const std::vector<uint64_t> seeds =
+      options.quick ? std::vector<uint64_t>{1} : std::vector<uint64_t>{1, 2};
+  for (uint64_t seed : seeds) {
+    const std::string label = "seed " + std::to_string(seed);
+    bool naive_reached = true;
+    bool all_lookahead_reached = true;
+    for (size_t k = 0; k < controllers.size(); ++k) {
+      const ControllerSpec& spec = controllers[k];
+      RecordingGeneratorConfig g;
+      g.scene = lab.name;
+      g.name = "closed-loop";
+      g.spawn = nearest_name(lab.scene.spawns, lab.eval.start_pos_m);
+      g.goal = nearest_name(lab.scene.goals, lab.eval.goal_pos_m);
+      g.seed = seed;
+      g.replay = lab_replay_config(spec.tree, r.interval_s, r.expansions_per_frame);
+      g.replay.max_seconds = options.closed_loop_max_s;
+      if (uses_statistics(spec.tree.strategy)) g.replay.statistics = statistics;
+      GeneratedRecording out;
+      std::string error;
+      if (!recording_generate(lab.library, lab.scene, lab.world, g, out, error)) {
+        if (r.error.empty()) r.error = error;
+        continue;
+      }
+      add_run(r, pooled[k], r.summary[k], spec, label, out.run, naive_reached, all_lookahead_reached);
+    }
+    if (!naive_reached) {
+      r.naive_stuck.push_back(label);
+      r.lookahead_reached_where_naive_stuck = r.lookahead_reached_where_naive_stuck && all_lookahead_reached;
+    }
+  }
+  finish_summary(r, pooled);
+  return r;
+}
+
+}  // namespace foresight::lab
