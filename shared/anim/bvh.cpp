@@ -1,5 +1,7 @@
 #include "anim/bvh.hpp"
 
+#include "io/text_file.hpp"
+
 #include <algorithm>
 #include <cfloat>
 #include <charconv>
@@ -508,30 +510,9 @@ bool bvh_parse(std::string_view text, std::string_view source_name, BvhDocument&
 }
 
 bool bvh_load(const std::filesystem::path& path, BvhDocument& out, std::string& error) {
-  try {
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) {
-      error = path.string() + ": cannot read: " + ec.message();
-      return false;
-    }
-    if (size > kMaxFileBytes) {
-      error = path.string() + ": file too large (" + std::to_string(size) + " bytes)";
-      return false;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      error = path.string() + ": cannot open";
-      return false;
-    }
-    std::string text(static_cast<size_t>(size), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    text.resize(static_cast<size_t>(in.gcount()));
-    return bvh_parse(text, path.string(), out, error);
-  } catch (const std::exception& e) {
-    error = path.string() + ": " + e.what();
-    return false;
-  }
+  std::string text;
+  return text_file_read(path, kMaxFileBytes, text, error) &&
+         bvh_parse(text, path.string(), out, error);
 }
 
 bool bvh_validate(const BvhDocument& doc, std::string& error) {

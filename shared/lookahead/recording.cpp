@@ -1,5 +1,8 @@
 #include "lookahead/recording.hpp"
 
+#include "io/json_describe.hpp"
+#include "io/text_file.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -68,23 +71,6 @@ std::string string_text(const std::string& s) {
 
 // ---------------------------------------------------------------- reading
 
-std::string describe(const json& j) {
-  switch (j.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return std::string("a boolean (") + (j.get<bool>() ? "true" : "false") + ")";
-    case json::value_t::string: {
-      std::string s = j.get_ref<const std::string&>();
-      if (s.size() > 40) s = s.substr(0, 40) + "...";
-      return "a string (\"" + s + "\")";
-    }
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "a number (" + shortest_double(j.get<double>()) + ")";
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array of " + std::to_string(j.size());
-    default: return "an unsupported value";
-  }
-}
 
 // A JSON path built only when an error is reported: "samples[12].dir", "start.pos", "version".
 struct Path {
@@ -136,7 +122,7 @@ class Reader {
   }
 
   bool object(const json& j, const Path& path) {
-    return j.is_object() || fail(path, "expected an object, got " + describe(j));
+    return j.is_object() || fail(path, "expected an object, got " + json_describe(j));
   }
 
   // obj[key]; a missing member is an error when required, else out = nullptr.
@@ -147,7 +133,7 @@ class Reader {
   }
 
   bool number(const json& j, const Path& path, double lo, double hi, double& out) {
-    if (!j.is_number()) return fail(path, "expected a number, got " + describe(j));
+    if (!j.is_number()) return fail(path, "expected a number, got " + json_describe(j));
     const double v = j.get<double>();
     if (!std::isfinite(v)) return fail(path, "is not a finite number");
     if (v < lo || v > hi)
@@ -169,10 +155,10 @@ class Reader {
                float* out) {
     if (!j.is_array() || j.size() != n)
       return fail(path, "expected an array of " + std::to_string(n) + " numbers " +
-                            std::string(shape) + ", got " + describe(j));
+                            std::string(shape) + ", got " + json_describe(j));
     for (std::size_t i = 0; i < n; ++i) {
       if (!j[i].is_number())
-        return fail(path, "component " + std::to_string(i) + ": expected a number, got " + describe(j[i]));
+        return fail(path, "component " + std::to_string(i) + ": expected a number, got " + json_describe(j[i]));
       const double v = j[i].get<double>();
       if (!std::isfinite(v) || v < -limit || v > limit)
         return fail(path, "component " + std::to_string(i) + ": " + shortest_double(v) +
@@ -184,7 +170,7 @@ class Reader {
   }
 
   bool string(const json& j, const Path& path, std::string& out) {
-    if (!j.is_string()) return fail(path, "expected a string, got " + describe(j));
+    if (!j.is_string()) return fail(path, "expected a string, got " + json_describe(j));
     out = j.get<std::string>();
     return true;
   }
@@ -228,7 +214,7 @@ bool read_sample(Reader& r, const json& j, long index, double previous_t, Comman
   out.input.crouch = false;
   if (!r.member(j, path, "crouch", false, v)) return false;
   if (v != nullptr) {
-    if (!v->is_boolean()) return r.fail(path / "crouch", "expected true or false, got " + describe(*v));
+    if (!v->is_boolean()) return r.fail(path / "crouch", "expected true or false, got " + json_describe(*v));
     out.input.crouch = v->get<bool>();
   }
   return true;
@@ -244,7 +230,7 @@ bool read_header(Reader& r, const json& root) {
     return r.fail({"format"}, "expected \"" + std::string(kRecordingFormat) + "\", got \"" + format + "\"");
   if (!r.member(root, top, "version", true, v)) return false;
   if (!v->is_number_integer() && !v->is_number_unsigned())
-    return r.fail({"version"}, "expected an integer, got " + describe(*v));
+    return r.fail({"version"}, "expected an integer, got " + json_describe(*v));
   if (v->get<double>() != kRecordingVersion)
     return r.fail({"version"}, "unsupported version " + shortest_double(v->get<double>()) +
                                    " (this build reads version " + std::to_string(kRecordingVersion) + ")");
@@ -418,7 +404,7 @@ bool parse_impl(std::string_view text, std::string_view source, Recording& out, 
     return false;
   }
   if (!samples_is_array) {
-    r.fail({"samples"}, "expected an array, got " + describe(*samples));
+    r.fail({"samples"}, "expected an array, got " + json_describe(*samples));
     error = r.error();
     return false;
   }
@@ -449,42 +435,9 @@ bool recording_parse(std::string_view json_text, std::string_view source_name, R
 }
 
 bool recording_load(const std::filesystem::path& path, Recording& recording, std::string& error) {
-  try {
-    const std::string source = path.filename().string();
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-      error = path.string() + ": " + (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-      return false;
-    }
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) {
-      error = path.string() + ": cannot read size: " + ec.message();
-      return false;
-    }
-    if (size > kMaxRecordingFileBytes) {
-      error = source + ": file is " + std::to_string(size) + " bytes, more than the " +
-              std::to_string(kMaxRecordingFileBytes) + " allowed";
-      return false;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      error = path.string() + ": cannot open for reading";
-      return false;
-    }
-    std::string text(static_cast<std::size_t>(size), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    if (in.bad()) {
-      error = path.string() + ": read error";
-      return false;
-    }
-    return recording_parse(text, source, recording, error);
-  } catch (const std::exception& e) {
-    error = path.string() + ": " + e.what();
-  } catch (...) {
-    error = path.string() + ": unknown error while loading the recording";
-  }
-  return false;
+  std::string text;
+  return text_file_read(path, kMaxRecordingFileBytes, text, error) &&
+         recording_parse(text, path.filename().string(), recording, error);
 }
 
 std::string recording_write(const Recording& rec) {

@@ -1,5 +1,7 @@
 #include "world/scene_json_reader.hpp"
 
+#include "io/json_describe.hpp"
+
 #include "world/scene.hpp"
 
 #include <cmath>
@@ -33,27 +35,10 @@ std::string Reader::fmt(double v) {
   return buf;
 }
 
-std::string Reader::describe(const json& j) {
-  switch (j.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return std::string("a boolean (") + (j.get<bool>() ? "true" : "false") + ")";
-    case json::value_t::string: {
-      std::string s = j.get_ref<const std::string&>();
-      if (s.size() > 40) s = s.substr(0, 40) + "...";
-      return "a string (\"" + s + "\")";
-    }
-    case json::value_t::number_integer:
-    case json::value_t::number_unsigned:
-    case json::value_t::number_float: return "a number (" + fmt(j.get<double>()) + ")";
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array of " + std::to_string(j.size());
-    default: return "an unsupported value";
-  }
-}
 
 bool Reader::number_in_range(const json& j, double lo, double hi, float& out, std::string& reason) {
   if (!j.is_number()) {
-    reason = "expected a number, got " + describe(j);
+    reason = "expected a number, got " + json_describe(j);
     return false;
   }
   const double v = j.get<double>();
@@ -71,7 +56,7 @@ bool Reader::number_in_range(const json& j, double lo, double hi, float& out, st
 
 bool Reader::require_object(const json& j, const std::string& path) {
   if (j.is_object()) return true;
-  return fail(path, "expected an object, got " + describe(j));
+  return fail(path, "expected an object, got " + json_describe(j));
 }
 
 bool Reader::check_keys(const json& obj, const std::string& path,
@@ -109,7 +94,7 @@ bool Reader::number(const json& j, const std::string& path, double lo, double hi
 }
 
 bool Reader::integer(const json& j, const std::string& path, int lo, int hi, int& out) {
-  if (!j.is_number_integer()) return fail(path, "expected an integer, got " + describe(j));
+  if (!j.is_number_integer()) return fail(path, "expected an integer, got " + json_describe(j));
   // Compare as double so a huge unsigned or negative value cannot wrap into range.
   const double v = j.get<double>();
   if (v < lo || v > hi)
@@ -136,7 +121,7 @@ bool Reader::required_string(const json& obj, const std::string& path, std::stri
                              std::string& out) {
   const json* j = nullptr;
   if (!member(obj, path, key, true, j)) return false;
-  if (!j->is_string()) return fail(child(path, key), "expected a string, got " + describe(*j));
+  if (!j->is_string()) return fail(child(path, key), "expected a string, got " + json_describe(*j));
   out = j->get<std::string>();
   if (out.size() > 256) return fail(child(path, key), "is longer than 256 characters");
   return true;
@@ -157,7 +142,7 @@ bool Reader::vec_components(const json& obj, const std::string& path, std::strin
   const std::string p = child(path, key);
   if (!j->is_array() || j->size() != n)
     return fail(p, "expected an array of " + std::to_string(n) + " numbers " +
-                       (n == 2 ? "[x, z]" : "[x, y, z]") + ", got " + describe(*j));
+                       (n == 2 ? "[x, z]" : "[x, y, z]") + ", got " + json_describe(*j));
   for (std::size_t i = 0; i < n; ++i)
     if (!number((*j)[i], index(p, i), -kMaxSceneCoord_m, kMaxSceneCoord_m, out[i])) return false;
   return true;

@@ -4,6 +4,8 @@
 // callers can chain them with &&. Never throws for wrong types or ranges.
 #include "math/types.hpp"
 
+#include "io/json_describe.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>
@@ -28,7 +30,6 @@ class Reader {
   /// Shortest faithful decimal form ("0.2", "1e+30").
   static std::string fmt(double v);
   /// "a string (\"abc\")", "a number (3)", "an object", ... for error messages.
-  static std::string describe(const json& j);
   /// Checks range and finiteness; on failure sets `reason` and returns false.
   static bool number_in_range(const json& j, double lo, double hi, float& out, std::string& reason);
 
@@ -69,7 +70,7 @@ class Reader {
     if (!member(obj, path, key, false, arr)) return false;
     if (arr == nullptr) return true;
     const std::string arr_path = child(path, key);
-    if (!arr->is_array()) return fail(arr_path, "expected an array, got " + describe(*arr));
+    if (!arr->is_array()) return fail(arr_path, "expected an array, got " + json_describe(*arr));
     if (arr->size() > max_count)
       return fail(arr_path, "has " + std::to_string(arr->size()) + " entries, more than the " +
                                 std::to_string(max_count) + " allowed");

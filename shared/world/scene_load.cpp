@@ -1,11 +1,12 @@
 #include "world/scene_load.hpp"
 
+#include "io/text_file.hpp"
+
 #include "world/scene_json_reader.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <exception>
-#include <fstream>
 #include <limits>
 #include <new>
 #include <system_error>
@@ -56,7 +57,7 @@ bool read_height_field(Reader& r, const json& j, const std::string& path, Height
   const std::string count_path = Reader::child(path, "count");
   if (!count->is_array() || count->size() != 2)
     return r.fail(count_path, "expected an array of 2 integers [count_x, count_z], got " +
-                                  Reader::describe(*count));
+                                  json_describe(*count));
   int counts[2] = {0, 0};
   for (std::size_t i = 0; i < 2; ++i) {
     if (!r.integer((*count)[i], Reader::index(count_path, i), 1, kMaxHeightFieldCount, counts[i]))
@@ -76,7 +77,7 @@ bool read_height_field(Reader& r, const json& j, const std::string& path, Height
   const std::string heights_path = Reader::child(path, "heights");
   if (!heights->is_array())
     return r.fail(heights_path, "expected an array of numbers or null, got " +
-                                    Reader::describe(*heights));
+                                    json_describe(*heights));
   const std::size_t expected = static_cast<std::size_t>(field.count_x) * field.count_z;
   if (heights->size() != expected)
     return r.fail(heights_path, "has " + std::to_string(heights->size()) +
@@ -94,7 +95,7 @@ bool read_height_field(Reader& r, const json& j, const std::string& path, Height
     // The element path is built only on failure: this loop runs up to 16M times.
     if (!h.is_number())
       return r.fail(Reader::index(heights_path, i),
-                    "expected a number or null (a hole), got " + Reader::describe(h));
+                    "expected a number or null (a hole), got " + json_describe(h));
     std::string reason;
     if (!Reader::number_in_range(h, -kMaxHeight_m, kMaxHeight_m, field.heights_m[i], reason))
       return r.fail(Reader::index(heights_path, i), reason);
@@ -176,7 +177,7 @@ bool read_npc(Reader& r, const json& j, const std::string& path, NpcSpawn& npc) 
 bool read_scene(Reader& r, const json& root, Scene& scene) {
   const std::string path;  // The root's path is empty; children are "name", "boxes[3]", ...
   if (!root.is_object())
-    return r.fail("(root)", "expected a JSON object, got " + Reader::describe(root));
+    return r.fail("(root)", "expected a JSON object, got " + json_describe(root));
   if (!r.check_keys(root, path,
                     {"format", "version", "name", "bounds", "boxes", "terrain", "spawns", "goals",
                      "cameras", "npcs"}))
@@ -291,43 +292,9 @@ bool scene_parse(std::string_view json_text, std::string_view source_name, Scene
 }
 
 bool scene_load(const std::filesystem::path& path, Scene& scene, std::string& error) {
-  try {
-    const std::string source = path.filename().string();
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-      error = path.string() + ": " +
-              (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-      return false;
-    }
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (ec) {
-      error = path.string() + ": cannot read size: " + ec.message();
-      return false;
-    }
-    if (size > kMaxSceneFileBytes) {
-      error = source + ": file is " + std::to_string(size) + " bytes, more than the " +
-              std::to_string(kMaxSceneFileBytes) + " allowed";
-      return false;
-    }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      error = path.string() + ": cannot open for reading";
-      return false;
-    }
-    std::string text(static_cast<std::size_t>(size), '\0');
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    if (in.bad()) {
-      error = path.string() + ": read error";
-      return false;
-    }
-    return scene_parse(text, source, scene, error);
-  } catch (const std::exception& e) {
-    error = path.string() + ": " + e.what();
-  } catch (...) {
-    error = path.string() + ": unknown error while loading the scene";
-  }
-  return false;
+  std::string text;
+  return text_file_read(path, kMaxSceneFileBytes, text, error) &&
+         scene_parse(text, path.filename().string(), scene, error);
 }
 
 }  // namespace foresight

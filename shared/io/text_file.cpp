@@ -1,0 +1,40 @@
+#include "io/text_file.hpp"
+
+#include <fstream>
+#include <new>
+
+namespace foresight {
+
+bool text_file_read(const std::filesystem::path& path, std::uintmax_t max_bytes, std::string& text,
+                    std::string& error) {
+  try {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      error = path.string() + ": " +
+              (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+      return false;
+    }
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) return error = path.string() + ": cannot read size: " + ec.message(), false;
+    // Checked before allocating: a hostile or mistyped path must not size an allocation.
+    if (size > max_bytes) {
+      error = path.string() + ": file is " + std::to_string(size) + " bytes, more than the " +
+              std::to_string(max_bytes) + " allowed";
+      return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return error = path.string() + ": cannot open for reading", false;
+    text.assign(static_cast<std::size_t>(size), '\0');
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    if (in.bad()) return error = path.string() + ": read error", false;
+    return true;
+  } catch (const std::bad_alloc&) {
+    error = path.string() + ": out of memory";
+  } catch (const std::exception& e) {
+    error = path.string() + ": " + e.what();
+  }
+  return false;
+}
+
+}  // namespace foresight
