@@ -35,6 +35,8 @@ class LookaheadAvatar {
   const MotionTree& tree() const { return tree_; }
   MotionTree& tree() { return tree_; }
   const ControlInput& input() const { return input_; }
+  /// Segment ends where nothing feasible was found. A held pose re-decides every frame, so each
+  /// frame of a hold counts once.
   int fallbacks() const { return fallbacks_; }
   int rejected_inputs() const { return rejected_inputs_; }
   /// The segment used when nothing feasible is found (-1 if the library has no idle segment).

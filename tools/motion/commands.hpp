@@ -12,6 +12,7 @@ struct PlayOptions {
   std::string scene = "maze";  ///< Built-in scene name or a path to a scene .json file.
   double seconds = 30.0;
   uint64_t seed = 1;
+  int64_t expansions_per_frame = 200;  ///< Look-ahead budget per frame.
   bool verbose = false;  ///< Also print every frame's root placement.
 };
 

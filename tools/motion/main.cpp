@@ -39,10 +39,13 @@ int main(int argc, char** argv) {
   auto* export_bvh = app.add_subcommand("export-bvh", "Write every clip as a BVH file");
   export_bvh->add_option("out_dir", out_dir, "Output folder")->required();
   tools::PlayOptions play_options;
-  auto* play = app.add_subcommand("play", "Play an avatar through the graph in a scene, headless");
+  auto* play = app.add_subcommand(
+      "play", "An avatar wanders (random held directions) with look-ahead in a scene, headless");
   play->add_option("--scene", play_options.scene, "Built-in scene name or scene .json path");
   play->add_option("--seconds", play_options.seconds, "Simulated seconds")->check(CLI::Range(0.0, 36000.0));
-  play->add_option("--seed", play_options.seed, "Seed of the successor choice");
+  play->add_option("--seed", play_options.seed, "Seed of the wandering directions");
+  play->add_option("--expansions", play_options.expansions_per_frame,
+                   "Look-ahead expansions per frame")->check(CLI::Range(0, 100000000));
   play->add_flag("--verbose", play_options.verbose, "Print every frame");
 
   tools::SteerOptions steer_options;

@@ -1,13 +1,10 @@
-// play: a headless avatar walking the motion graph through a scene. At each segment end it picks,
-// at random (seeded), one successor whose every frame is collision-free and from which a
-// collision-free continuation of kLookAheadSteps more segments exists (a depth-first probe; the
-// feasible motion tree of the look-ahead issue replaces this). Every played frame is then re-checked from its FK pose, independently of
-// the precomputed volumes, and the run fails if any collides.
+// play: a headless avatar wandering through a scene with look-ahead. A seeded "player" holds a
+// random direction for a few seconds, then picks another; the feasible motion tree keeps the
+// avatar out of the walls. Every shown pose is re-checked from FK (pose_check.hpp) and the run
+// fails if any collides.
 #include "commands.hpp"
-#include "library/playback.hpp"
 #include "library/pose_check.hpp"
-#include "world/collision_check.hpp"
-#include "world/collision_world.hpp"
+#include "lookahead/lookahead_avatar.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 
@@ -15,32 +12,6 @@
 #include <random>
 
 namespace foresight::tools {
-namespace {
-
-constexpr int kLookAheadSteps = 3;
-
-float choice_weight(uint32_t tags) {
-  if (tags & kTagFight) return 0.0f;  // fighting moves are for the NPC fighter, not walking
-  if (tags & kTagIdle) return 0.2f;
-  if (tags & kTagRun) return 1.0f;    // runs need room a maze rarely has
-  if (tags & kTagTurn) return 2.0f;
-  return 3.0f;
-}
-
-// True when `segment` placed at `start` is free and continues freely for `depth` more segments.
-bool feasible_future(const MotionLibrary& lib, const CollisionWorld& world, int segment,
-                     const Placement& start, int depth) {
-  if (!segment_feasible(world, lib.segment_shapes[segment], start)) return false;
-  if (depth == 0) return true;
-  const Placement end = start.compose(lib.segment_motion[segment].end);
-  for (const Transition& t : lib.graph.successors(segment))
-    if (choice_weight(lib.graph.segments[t.to].tags) > 0 &&
-        feasible_future(lib, world, t.to, end, depth - 1))
-      return true;
-  return false;
-}
-
-}  // namespace
 
 int command_play(const MotionSource& source, const PlayOptions& o) {
   MotionLibrary lib;
@@ -52,79 +23,65 @@ int command_play(const MotionSource& source, const PlayOptions& o) {
     std::fprintf(stderr, "foresight-motion: %s\n", error.c_str());
     return 1;
   }
-
-  // Start in the first idle segment (or segment 0) at the scene's first spawn.
-  int start_segment = 0;
-  for (int s = 0; s < lib.graph.num_segments(); ++s)
-    if (lib.graph.segments[s].tags & kTagIdle) {
-      start_segment = s;
-      break;
-    }
+  // Start idle if the library has an idle segment free at the spawn (a captured library may
+  // not: then the first segment that is free there).
   const SpawnPoint& spawn = scene.spawns.front();
-  PlaybackState state{start_segment, 0, Placement{spawn.pos_m, spawn.heading_rad}, -1};
+  const Placement start{spawn.pos_m, spawn.heading_rad};
+  int start_segment = find_fallback_segment(lib);
+  if (start_segment < 0 || !segment_feasible(world, lib.segment_shapes[start_segment], start)) {
+    start_segment = -1;
+    for (int s = 0; s < lib.graph.num_segments() && start_segment < 0; ++s)
+      if (segment_feasible(world, lib.segment_shapes[s], start)) start_segment = s;
+  }
+  if (start_segment < 0) {
+    std::fprintf(stderr, "foresight-motion: no segment is free at the spawn of %s\n",
+                 scene.name.c_str());
+    return 1;
+  }
+  LookaheadAvatar avatar(lib, world, MotionTreeConfig{}, start_segment, start);
   std::printf("library %s (%d segments, %zu transitions), scene %s, spawn (%.2f, %.2f)\n",
               lib.name.c_str(), lib.graph.num_segments(), lib.graph.transitions.size(),
               scene.name.c_str(), spawn.pos_m.x, spawn.pos_m.y);
-  if (!segment_feasible(world, lib.segment_shapes[start_segment], state.segment_start)) {
-    std::fprintf(stderr, "foresight-motion: the spawn is not free for '%s'\n",
-                 lib.graph.segments[start_segment].name.c_str());
-    return 1;
-  }
 
   std::mt19937_64 rng(o.seed);
+  std::uniform_real_distribution<float> angle(-kPi, kPi), hold_s(1.5f, 4.0f);
   const float fps = lib.clips[lib.graph.segments[start_segment].clip].fps;
   const long long total_frames = static_cast<long long>(o.seconds * fps);
+  ControlInput input;  // camera yaw 0: the direction is a world direction
+  long long next_change = 0, colliding_frames = 0, segments = 1;
   PoseCheckScratch check;
-  std::vector<int> feasible;
-  std::vector<float> weights;
-  long long colliding_frames = 0, segments_played = 1;
+  vec2 previous = avatar.root().pos_m;
   float distance_m = 0;
-  Placement previous = playback_root(lib, state);
-  std::printf("  t=  0.00s  %-26s at (%6.2f, %6.2f) heading %+7.1f deg\n",
-              lib.graph.segments[state.segment].name.c_str(), previous.pos_m.x, previous.pos_m.y,
-              degrees(previous.heading_rad));
-
+  bool previous_was_fallback = false;
   for (long long frame = 0; frame < total_frames; ++frame) {
-    if (playback_at_end(lib, state)) {
-      const Placement next_start = playback_next_start(lib, state);
-      feasible.clear();
-      // The deepest probe that leaves a choice: a corner may allow one more segment, not three.
-      const auto succ = lib.graph.successors(state.segment);
-      for (int depth = kLookAheadSteps; depth >= 0 && feasible.empty(); --depth) {
-        weights.clear();
-        for (size_t i = 0; i < succ.size(); ++i) {
-          const float w = choice_weight(lib.graph.segments[succ[i].to].tags);
-          if (w > 0 && feasible_future(lib, world, succ[i].to, next_start, depth)) {
-            feasible.push_back(lib.graph.first_transition[state.segment] + static_cast<int>(i));
-            weights.push_back(w);
-          }
-        }
-      }
-      if (feasible.empty()) {
-        std::printf("  t=%6.2fs  no feasible successor of %s: the avatar stops here\n", frame / fps,
-                    lib.graph.segments[state.segment].name.c_str());
-        break;
-      }
-      std::discrete_distribution<size_t> pick(weights.begin(), weights.end());
-      playback_take(lib, state, feasible[pick(rng)]);
-      ++segments_played;
-      const Placement at = playback_root(lib, state);
-      std::printf("  t=%6.2fs  %-26s at (%6.2f, %6.2f) heading %+7.1f deg  (%zu of %zu feasible)\n",
-                  frame / fps, lib.graph.segments[state.segment].name.c_str(), at.pos_m.x,
-                  at.pos_m.y, degrees(at.heading_rad), feasible.size(), succ.size());
+    if (frame == next_change) {
+      const float a = angle(rng);
+      input.camera_dir = vec2(std::sin(a), std::cos(a));
+      next_change += static_cast<long long>(hold_s(rng) * fps);
     }
-    // Independent re-check of the pose actually shown.
-    if (shown_pose_collides(lib, world, state, check)) ++colliding_frames;
-    const Placement now = playback_root(lib, state);
-    distance_m += glm::length(now.pos_m - previous.pos_m);
-    previous = now;
+    avatar.set_input(input);
+    avatar.grow(GrowBudget::expansions(o.expansions_per_frame));
+    const AvatarStepResult step = avatar.step();
+    if (shown_pose_collides(lib, world, avatar.playback(), check)) ++colliding_frames;
+    const Placement at = avatar.root();
+    distance_m += glm::length(at.pos_m - previous);
+    previous = at.pos_m;
     if (o.verbose)
-      std::printf("    frame %lld: (%.3f, %.3f) %+.1f deg\n", frame, now.pos_m.x, now.pos_m.y,
-                  degrees(now.heading_rad));
-    ++state.frame;
+      std::printf("    frame %lld: (%.3f, %.3f) %+.1f deg\n", frame, at.pos_m.x, at.pos_m.y,
+                  degrees(at.heading_rad));
+    // A held pose (nothing feasible, no idle) re-decides every frame: report it once.
+    const bool repeated_hold = step.fallback && previous_was_fallback;
+    previous_was_fallback = step.fallback;
+    if (!step.segment_changed || repeated_hold) continue;
+    ++segments;
+    std::printf("  t=%6.2fs  %-24s at (%6.2f, %6.2f) heading %+7.1f deg  tree %5d nodes%s\n",
+                frame / fps, lib.graph.segments[avatar.playback().segment].name.c_str(), at.pos_m.x,
+                at.pos_m.y, degrees(at.heading_rad), avatar.tree().num_nodes(),
+                step.fallback ? "  (nothing feasible: stopped)" : "");
   }
-  std::printf("played %lld segments, walked %.1f m, %lld colliding frames\n", segments_played,
-              distance_m, colliding_frames);
+  std::printf("played %lld segments, walked %.1f m, %d stops with nothing feasible, %lld colliding "
+              "frames\n",
+              segments, distance_m, avatar.fallbacks(), colliding_frames);
   return colliding_frames == 0 ? 0 : 1;
 }
 
