@@ -1,6 +1,7 @@
 #include "lookahead/recording.hpp"
 
 #include "io/json_describe.hpp"
+#include "io/json_reader.hpp"
 #include "io/text_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -10,8 +11,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
-#include <initializer_list>
 #include <system_error>
 
 namespace foresight {
@@ -72,226 +73,123 @@ std::string string_text(const std::string& s) {
 // ---------------------------------------------------------------- reading
 
 
-// A JSON path built only when an error is reported: "samples[12].dir", "start.pos", "version".
-struct Path {
-  Path(std::string_view p = {}, long i = -1, std::string_view f = {}) : parent(p), index(i), field(f) {}
-  std::string_view parent;
-  long index;  // -1: no index
-  std::string_view field;
-
-  std::string str() const {
-    std::string s(parent);
-    if (index >= 0) s += "[" + std::to_string(index) + "]";
-    if (!field.empty()) s += (s.empty() ? "" : ".") + std::string(field);
-    return s;
-  }
-  Path operator/(std::string_view f) const { return {parent, index, f}; }
-};
-
-class Reader {
- public:
-  explicit Reader(std::string_view source) : source_(source) {}
-  const std::string& error() const { return error_; }
-  bool failed() const { return !error_.empty(); }
-
-  bool fail(const Path& path, std::string_view reason) {
-    if (error_.empty()) {
-      const std::string p = path.str();
-      error_ = source_ + ": " + (p.empty() ? "" : p + ": ") + std::string(reason);
-    }
-    return false;
-  }
-
-  // Unknown keys are refused, all of them named; keys starting with '_' are notes.
-  bool check_keys(const json& obj, const Path& path, std::initializer_list<std::string_view> allowed) {
-    std::string unknown;
-    int count = 0;
-    for (const auto& item : obj.items()) {
-      const std::string& key = item.key();
-      if (!key.empty() && key[0] == '_') continue;
-      if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-      if (count < 8) unknown += (unknown.empty() ? "\"" : ", \"") + key + "\"";
-      ++count;
-    }
-    if (count == 0) return true;
-    std::string names;
-    for (std::string_view a : allowed) names += (names.empty() ? "" : ", ") + std::string(a);
-    return fail(path, std::string(count == 1 ? "unknown field " : "unknown fields ") + unknown +
-                          (count > 8 ? " and " + std::to_string(count - 8) + " more" : "") +
-                          " (allowed: " + names + ")");
-  }
-
-  bool object(const json& j, const Path& path) {
-    return j.is_object() || fail(path, "expected an object, got " + json_describe(j));
-  }
-
-  // obj[key]; a missing member is an error when required, else out = nullptr.
-  bool member(const json& obj, const Path& path, std::string_view key, bool required, const json*& out) {
-    const auto it = obj.find(key);
-    out = it == obj.end() ? nullptr : &*it;
-    return out != nullptr || !required || fail(path / key, "missing required field");
-  }
-
-  bool number(const json& j, const Path& path, double lo, double hi, double& out) {
-    if (!j.is_number()) return fail(path, "expected a number, got " + json_describe(j));
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) return fail(path, "is not a finite number");
-    if (v < lo || v > hi)
-      return fail(path, shortest_double(v) + " is out of range [" + shortest_double(lo) + ", " +
-                            shortest_double(hi) + "]");
-    out = v;
-    return true;
-  }
-
-  bool number_f(const json& j, const Path& path, double lo, double hi, float& out) {
-    double v = 0;
-    if (!number(j, path, lo, hi, v)) return false;
-    out = static_cast<float>(v);
-    return true;
-  }
-
-  // An array of n numbers within +-limit; `shape` names it in messages ("[x, z]").
-  bool numbers(const json& j, const Path& path, std::size_t n, double limit, std::string_view shape,
-               float* out) {
-    if (!j.is_array() || j.size() != n)
-      return fail(path, "expected an array of " + std::to_string(n) + " numbers " +
-                            std::string(shape) + ", got " + json_describe(j));
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!j[i].is_number())
-        return fail(path, "component " + std::to_string(i) + ": expected a number, got " + json_describe(j[i]));
-      const double v = j[i].get<double>();
-      if (!std::isfinite(v) || v < -limit || v > limit)
-        return fail(path, "component " + std::to_string(i) + ": " + shortest_double(v) +
-                              " is out of range [" + shortest_double(-limit) + ", " +
-                              shortest_double(limit) + "]");
-      out[i] = static_cast<float>(v);
-    }
-    return true;
-  }
-
-  bool string(const json& j, const Path& path, std::string& out) {
-    if (!j.is_string()) return fail(path, "expected a string, got " + json_describe(j));
-    out = j.get<std::string>();
-    return true;
-  }
-
- private:
-  std::string source_;
-  std::string error_;
-};
+using json_io::Reader;
 
 // One sample; `previous_t` is the last accepted sample's time (< 0 for the first).
-bool read_sample(Reader& r, const json& j, long index, double previous_t, CommandSample& out) {
-  const Path path{"samples", index, {}};
-  if (!r.object(j, path)) return false;
+bool read_sample(Reader& r, const json& j, std::size_t index, double previous_t, CommandSample& out) {
+  constexpr Reader::Null kNull = Reader::Null::value;  // a null value is a type error
+  const std::string path = Reader::index("samples", index);
+  if (!r.require_object(j, path)) return false;
   if (!r.check_keys(j, path, {"t", "dir", "camera_yaw_deg", "camera_pos", "crouch"})) return false;
   const json* v = nullptr;
-  if (!r.member(j, path, "t", true, v) || !r.number(*v, path / "t", 0.0, kMaxRecordingTime_s, out.t_s))
+  if (!r.member(j, path, "t", true, v, kNull) ||
+      !r.number(*v, Reader::child(path, "t"), 0.0, kMaxRecordingTime_s, out.t_s))
     return false;
   if (previous_t < 0 && out.t_s != 0.0)
-    return r.fail(path / "t", "the first sample must be at t = 0, got " + shortest_double(out.t_s));
+    return r.fail(Reader::child(path, "t"),
+                  "the first sample must be at t = 0, got " + shortest_double(out.t_s));
   if (previous_t >= 0 && !(out.t_s > previous_t))
-    return r.fail(path / "t", shortest_double(out.t_s) + (out.t_s == previous_t ? " repeats" : " is before") +
-                                  " the previous sample's t (" + shortest_double(previous_t) +
-                                  "): times must increase strictly");
+    return r.fail(Reader::child(path, "t"),
+                  shortest_double(out.t_s) + (out.t_s == previous_t ? " repeats" : " is before") +
+                      " the previous sample's t (" + shortest_double(previous_t) +
+                      "): times must increase strictly");
+  constexpr auto kInReason = Reader::Component::in_reason;
   float dir[2] = {0, 0};
-  if (!r.member(j, path, "dir", true, v) || !r.numbers(*v, path / "dir", 2, 1e6, "[x, y]", dir))
+  if (!r.member(j, path, "dir", true, v, kNull) ||
+      !r.numbers(*v, Reader::child(path, "dir"), 2, 1e6, "[x, y]", dir, kInReason))
     return false;
   out.input.camera_dir = vec2(dir[0], dir[1]);
   // The same test the avatar applies (control_input_valid), so every parsed sample is accepted.
   if (!(glm::dot(out.input.camera_dir, out.input.camera_dir) <= 1.0001f))
-    return r.fail(path / "dir", "length " + shortest_float(glm::length(out.input.camera_dir)) +
-                                    " is more than 1");
+    return r.fail(Reader::child(path, "dir"),
+                  "length " + shortest_float(glm::length(out.input.camera_dir)) + " is more than 1");
   double yaw_deg = 0;
-  if (!r.member(j, path, "camera_yaw_deg", true, v) ||
-      !r.number(*v, path / "camera_yaw_deg", -kMaxAngle_deg, kMaxAngle_deg, yaw_deg))
+  if (!r.member(j, path, "camera_yaw_deg", true, v, kNull) ||
+      !r.number(*v, Reader::child(path, "camera_yaw_deg"), -kMaxAngle_deg, kMaxAngle_deg, yaw_deg))
     return false;
   out.input.camera_yaw_rad = rad_from_deg(yaw_deg);
   out.camera_pos_m = vec3(0.0f);
-  if (!r.member(j, path, "camera_pos", false, v)) return false;
-  if (v != nullptr && !r.numbers(*v, path / "camera_pos", 3, kMaxRecordingCoord_m, "[x, y, z]", &out.camera_pos_m.x))
+  if (!r.member(j, path, "camera_pos", false, v, kNull)) return false;
+  if (v != nullptr && !r.numbers(*v, Reader::child(path, "camera_pos"), 3, kMaxRecordingCoord_m,
+                                 "[x, y, z]", &out.camera_pos_m.x, kInReason))
     return false;
   out.input.crouch = false;
-  if (!r.member(j, path, "crouch", false, v)) return false;
+  if (!r.member(j, path, "crouch", false, v, kNull)) return false;
   if (v != nullptr) {
-    if (!v->is_boolean()) return r.fail(path / "crouch", "expected true or false, got " + json_describe(*v));
+    if (!v->is_boolean())
+      return r.fail(Reader::child(path, "crouch"), "expected true or false, got " + json_describe(*v));
     out.input.crouch = v->get<bool>();
   }
   return true;
 }
 
 bool read_header(Reader& r, const json& root) {
-  const Path top{};
-  if (!r.object(root, top)) return false;
+  constexpr Reader::Null kNull = Reader::Null::value;
+  if (!r.require_object(root, "")) return false;
   const json* v = nullptr;
   std::string format;
-  if (!r.member(root, top, "format", true, v) || !r.string(*v, {"format"}, format)) return false;
+  if (!r.member(root, "", "format", true, v, kNull) || !r.string(*v, "format", format)) return false;
   if (format != kRecordingFormat)
-    return r.fail({"format"}, "expected \"" + std::string(kRecordingFormat) + "\", got \"" + format + "\"");
-  if (!r.member(root, top, "version", true, v)) return false;
+    return r.fail("format", "expected \"" + std::string(kRecordingFormat) + "\", got \"" + format + "\"");
+  if (!r.member(root, "", "version", true, v, kNull)) return false;
   if (!v->is_number_integer() && !v->is_number_unsigned())
-    return r.fail({"version"}, "expected an integer, got " + json_describe(*v));
+    return r.fail("version", "expected an integer, got " + json_describe(*v));
   if (v->get<double>() != kRecordingVersion)
-    return r.fail({"version"}, "unsupported version " + shortest_double(v->get<double>()) +
-                                   " (this build reads version " + std::to_string(kRecordingVersion) + ")");
+    return r.fail("version", "unsupported version " + shortest_double(v->get<double>()) +
+                                 " (this build reads version " + std::to_string(kRecordingVersion) + ")");
   return true;
 }
 
+// A ground point "<object>.pos": [x, z].
+bool read_ground_pos(Reader& r, const json& obj, const std::string& path, vec2& out) {
+  const json* v = nullptr;
+  return r.member(obj, path, "pos", true, v, Reader::Null::value) &&
+         r.numbers(*v, Reader::child(path, "pos"), 2, kMaxRecordingCoord_m, "[x, z]", &out.x,
+                   Reader::Component::in_reason);
+}
+
 bool read_body(Reader& r, const json& root, Recording& rec) {
-  const Path top{};
-  if (!r.check_keys(root, top, {"format", "version", "scene", "name", "library_hash", "start", "goal", "samples"}))
+  constexpr Reader::Null kNull = Reader::Null::value;
+  if (!r.check_keys(root, "", {"format", "version", "scene", "name", "library_hash", "start", "goal", "samples"}))
     return false;
   const json* v = nullptr;
-  if (!r.member(root, top, "library_hash", false, v)) return false;
+  if (!r.member(root, "", "library_hash", false, v, kNull)) return false;
   if (v != nullptr) {
     std::string hex;
-    if (!r.string(*v, {"library_hash"}, hex)) return false;
+    if (!r.string(*v, "library_hash", hex)) return false;
     const auto res = std::from_chars(hex.data(), hex.data() + hex.size(), rec.library_hash, 16);
     if (hex.empty() || hex.size() > 16 || res.ec != std::errc() || res.ptr != hex.data() + hex.size())
-      return r.fail({"library_hash"}, "expected 1 to 16 hexadecimal digits, got \"" + hex + "\"");
+      return r.fail("library_hash", "expected 1 to 16 hexadecimal digits, got \"" + hex + "\"");
   }
-  if (!r.member(root, top, "scene", true, v) || !r.string(*v, {"scene"}, rec.scene)) return false;
-  if (rec.scene.empty()) return r.fail({"scene"}, "must not be empty");
-  if (!r.member(root, top, "name", false, v)) return false;
-  if (v != nullptr && !r.string(*v, {"name"}, rec.name)) return false;
+  if (!r.member(root, "", "scene", true, v, kNull) || !r.string(*v, "scene", rec.scene)) return false;
+  if (rec.scene.empty()) return r.fail("scene", "must not be empty");
+  if (!r.member(root, "", "name", false, v, kNull)) return false;
+  if (v != nullptr && !r.string(*v, "name", rec.name)) return false;
 
   const json* start = nullptr;
-  if (!r.member(root, top, "start", true, start) || !r.object(*start, {"start"}) ||
-      !r.check_keys(*start, {"start"}, {"pos", "heading_deg"}))
+  if (!r.member(root, "", "start", true, start, kNull) || !r.require_object(*start, "start") ||
+      !r.check_keys(*start, "start", {"pos", "heading_deg"}))
     return false;
   double heading_deg = 0;
-  if (!r.member(*start, {"start"}, "pos", true, v) ||
-      !r.numbers(*v, {"start", -1, "pos"}, 2, kMaxRecordingCoord_m, "[x, z]", &rec.start_pos_m.x) ||
-      !r.member(*start, {"start"}, "heading_deg", true, v) ||
-      !r.number(*v, {"start", -1, "heading_deg"}, -kMaxAngle_deg, kMaxAngle_deg, heading_deg))
+  if (!read_ground_pos(r, *start, "start", rec.start_pos_m) ||
+      !r.member(*start, "start", "heading_deg", true, v, kNull) ||
+      !r.number(*v, "start.heading_deg", -kMaxAngle_deg, kMaxAngle_deg, heading_deg))
     return false;
   rec.start_heading_rad = rad_from_deg(heading_deg);
 
   const json* goal = nullptr;
-  if (!r.member(root, top, "goal", true, goal) || !r.object(*goal, {"goal"}) ||
-      !r.check_keys(*goal, {"goal"}, {"pos", "radius"}))
+  if (!r.member(root, "", "goal", true, goal, kNull) || !r.require_object(*goal, "goal") ||
+      !r.check_keys(*goal, "goal", {"pos", "radius"}))
     return false;
-  if (!r.member(*goal, {"goal"}, "pos", true, v) ||
-      !r.numbers(*v, {"goal", -1, "pos"}, 2, kMaxRecordingCoord_m, "[x, z]", &rec.goal_pos_m.x) ||
-      !r.member(*goal, {"goal"}, "radius", false, v))
+  if (!read_ground_pos(r, *goal, "goal", rec.goal_pos_m) ||
+      !r.member(*goal, "goal", "radius", false, v, kNull))
     return false;
-  if (v != nullptr && !r.number_f(*v, {"goal", -1, "radius"}, 1e-3, 1000.0, rec.goal_radius_m)) return false;
-  return true;
-}
-
-/// 1-based line and column of a byte offset, as editors count them.
-void line_column(std::string_view text, std::size_t byte, std::size_t& line, std::size_t& column) {
-  line = 1;
-  column = 1;
-  const std::size_t end = std::min(byte, text.size());
-  for (std::size_t i = 0; i < end; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
+  double radius = 0;
+  if (v != nullptr) {
+    if (!r.number(*v, "goal.radius", 1e-3, 1000.0, radius)) return false;
+    rec.goal_radius_m = static_cast<float>(radius);
   }
+  return true;
 }
 
 bool parse_impl(std::string_view text, std::string_view source, Recording& out, std::string& error) {
@@ -307,7 +205,7 @@ bool parse_impl(std::string_view text, std::string_view source, Recording& out, 
   bool samples_is_array = false;
   bool too_many_events = false, too_many_samples = false;
   std::size_t events = 0;
-  long sample_index = 0;
+  std::size_t sample_index = 0;
 
   // Samples (depth 2 inside the top-level "samples" array) are read and validated as soon as
   // each one is complete, then discarded from the DOM.
@@ -330,7 +228,7 @@ bool parse_impl(std::string_view text, std::string_view source, Recording& out, 
                              event == json::parse_event_t::array_end ||
                              event == json::parse_event_t::value;
     if (!in_samples || !element_end) return true;
-    const long index = sample_index++;
+    const std::size_t index = sample_index++;
     if (samples_reader.failed()) return false;
     if (rec.samples.size() >= kMaxRecordingSamples) {
       too_many_samples = true;
@@ -343,35 +241,7 @@ bool parse_impl(std::string_view text, std::string_view source, Recording& out, 
   };
 
   json root;
-  try {
-    root = json::parse(text.begin(), text.end(), callback);
-  } catch (const json::parse_error& e) {
-    // nlohmann reports the offset of the byte after the error; point at the byte itself.
-    std::size_t line = 0, column = 0;
-    line_column(text, e.byte > 0 ? e.byte - 1 : 0, line, column);
-    std::string what = e.what();
-    if (const std::size_t colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-    error = std::string(source) + ": invalid JSON at line " + std::to_string(line) + ", column " +
-            std::to_string(column) + ": " + what;
-    return false;
-  } catch (const json::out_of_range& e) {
-    // A literal too large for a double ("1e400"): nlohmann quotes it but gives no position.
-    std::string what = e.what();
-    if (const std::size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    std::string where;
-    const std::size_t q0 = what.find('\'');
-    const std::size_t q1 = q0 == std::string::npos ? q0 : what.find('\'', q0 + 1);
-    if (q1 != std::string::npos) {
-      const std::size_t at = text.find(what.substr(q0 + 1, q1 - q0 - 1));
-      if (at != std::string_view::npos) {
-        std::size_t line = 0, column = 0;
-        line_column(text, at, line, column);
-        where = " at line " + std::to_string(line) + ", column " + std::to_string(column);
-      }
-    }
-    error = std::string(source) + ": invalid JSON" + where + ": " + what + " (not a finite number)";
-    return false;
-  }
+  if (!json_io::parse(text, source, root, error, callback)) return false;
   if (too_many_events) {
     error = std::string(source) + ": more than " + std::to_string(kMaxParseEvents) + " JSON values";
     return false;
@@ -399,12 +269,12 @@ bool parse_impl(std::string_view text, std::string_view source, Recording& out, 
     return false;
   }
   const json* samples = nullptr;
-  if (!r.member(root, {}, "samples", true, samples)) {
+  if (!r.member(root, "", "samples", true, samples, Reader::Null::value)) {
     error = r.error();
     return false;
   }
   if (!samples_is_array) {
-    r.fail({"samples"}, "expected an array, got " + json_describe(*samples));
+    r.fail("samples", "expected an array, got " + json_describe(*samples));
     error = r.error();
     return false;
   }
@@ -420,18 +290,9 @@ bool parse_impl(std::string_view text, std::string_view source, Recording& out, 
 
 bool recording_parse(std::string_view json_text, std::string_view source_name, Recording& recording,
                      std::string& error) {
-  // Anything escaping the reader (allocation failure on a huge file, an exception we did not
-  // foresee) becomes an error message: a broken file must never take a program down.
-  try {
+  return json_io::guarded(source_name, "recording", error, [&] {
     return parse_impl(json_text, source_name, recording, error);
-  } catch (const std::bad_alloc&) {
-    error = std::string(source_name) + ": out of memory while reading the recording";
-  } catch (const std::exception& e) {
-    error = std::string(source_name) + ": " + e.what();
-  } catch (...) {
-    error = std::string(source_name) + ": unknown error while reading the recording";
-  }
-  return false;
+  });
 }
 
 bool recording_load(const std::filesystem::path& path, Recording& recording, std::string& error) {

@@ -2,20 +2,18 @@
 
 #include "io/text_file.hpp"
 
-#include "world/scene_json_reader.hpp"
+#include "io/json_reader.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <exception>
 #include <limits>
-#include <new>
 #include <system_error>
 
 namespace foresight {
 namespace {
 
 using nlohmann::json;
-using scene_json::Reader;
+using json_io::Reader;
 
 // Files larger than this are refused before reading: a 4096 x 4096 height field written with
 // short numbers is ~100 MB, so this leaves room without letting a stray file exhaust memory.
@@ -34,22 +32,23 @@ bool read_box(Reader& r, const json& j, const std::string& path, SceneBox& box) 
   if (!box_kind_from_name(kind, box.kind))
     return r.fail(Reader::child(path, "kind"), "unknown kind \"" + kind + "\" (expected one of: " +
                                                    std::string(box_kind_names()) + ")");
-  return r.required_vec3(j, path, "min", box.min_m) && r.required_vec3(j, path, "max", box.max_m) &&
+  return r.required_vec3(j, path, "min", kMaxSceneCoord_m, box.min_m) &&
+         r.required_vec3(j, path, "max", kMaxSceneCoord_m, box.max_m) &&
          r.check_min_less_max(Reader::child(path, "max"), box.min_m, box.max_m);
 }
 
 bool read_step(Reader& r, const json& j, const std::string& path, StepBlock& step) {
   return r.require_object(j, path) && r.check_keys(j, path, {"name", "min", "max"}) &&
          r.optional_string(j, path, "name", step.name) &&
-         r.required_vec3(j, path, "min", step.min_m) &&
-         r.required_vec3(j, path, "max", step.max_m) &&
+         r.required_vec3(j, path, "min", kMaxSceneCoord_m, step.min_m) &&
+         r.required_vec3(j, path, "max", kMaxSceneCoord_m, step.max_m) &&
          r.check_min_less_max(Reader::child(path, "max"), step.min_m, step.max_m);
 }
 
 bool read_height_field(Reader& r, const json& j, const std::string& path, HeightField& field) {
   if (!r.require_object(j, path) ||
       !r.check_keys(j, path, {"origin", "cell", "count", "heights"}) ||
-      !r.required_vec2(j, path, "origin", field.origin_m) ||
+      !r.required_vec2(j, path, "origin", kMaxSceneCoord_m, field.origin_m) ||
       !r.required_number(j, path, "cell", 0.01, 100.0, field.cell_m))
     return false;
   const json* count = nullptr;
@@ -121,7 +120,7 @@ bool read_spawn(Reader& r, const json& j, const std::string& path, SpawnPoint& s
   float heading_deg = 0.0f;
   if (!r.require_object(j, path) || !r.check_keys(j, path, {"name", "pos", "heading_deg"}) ||
       !r.optional_string(j, path, "name", spawn.name) ||
-      !r.required_vec2(j, path, "pos", spawn.pos_m) ||
+      !r.required_vec2(j, path, "pos", kMaxSceneCoord_m, spawn.pos_m) ||
       !r.required_number(j, path, "heading_deg", -kMaxHeadingDeg, kMaxHeadingDeg, heading_deg))
     return false;
   spawn.heading_rad = wrap_angle(radians(heading_deg));
@@ -132,14 +131,14 @@ bool read_goal(Reader& r, const json& j, const std::string& path, GoalPoint& goa
   goal.radius_m = 0.5f;
   return r.require_object(j, path) && r.check_keys(j, path, {"name", "pos", "radius"}) &&
          r.optional_string(j, path, "name", goal.name) &&
-         r.required_vec2(j, path, "pos", goal.pos_m) &&
+         r.required_vec2(j, path, "pos", kMaxSceneCoord_m, goal.pos_m) &&
          r.optional_number(j, path, "radius", 0.01, 100.0, goal.radius_m);
 }
 
 bool read_rect(Reader& r, const json& j, const std::string& path, GroundRect& rect) {
   return r.require_object(j, path) && r.check_keys(j, path, {"min", "max"}) &&
-         r.required_vec2(j, path, "min", rect.min_m) &&
-         r.required_vec2(j, path, "max", rect.max_m) &&
+         r.required_vec2(j, path, "min", kMaxSceneCoord_m, rect.min_m) &&
+         r.required_vec2(j, path, "max", kMaxSceneCoord_m, rect.max_m) &&
          r.check_min_less_max(Reader::child(path, "max"), rect.min_m, rect.max_m);
 }
 
@@ -148,8 +147,8 @@ bool read_camera(Reader& r, const json& j, const std::string& path, SceneCamera&
   if (!r.require_object(j, path) ||
       !r.check_keys(j, path, {"name", "position", "target", "fov_y_deg", "region"}) ||
       !r.optional_string(j, path, "name", camera.name) ||
-      !r.required_vec3(j, path, "position", camera.position_m) ||
-      !r.required_vec3(j, path, "target", camera.target_m) ||
+      !r.required_vec3(j, path, "position", kMaxSceneCoord_m, camera.position_m) ||
+      !r.required_vec3(j, path, "target", kMaxSceneCoord_m, camera.target_m) ||
       !r.required_number(j, path, "fov_y_deg", 1.0, 179.0, fov_deg))
     return false;
   camera.fov_y_rad = radians(fov_deg);
@@ -166,7 +165,7 @@ bool read_npc(Reader& r, const json& j, const std::string& path, NpcSpawn& npc) 
       !r.check_keys(j, path, {"name", "kind", "pos", "heading_deg"}) ||
       !r.optional_string(j, path, "name", npc.name) ||
       !r.required_string(j, path, "kind", npc.kind) ||
-      !r.required_vec2(j, path, "pos", npc.pos_m) ||
+      !r.required_vec2(j, path, "pos", kMaxSceneCoord_m, npc.pos_m) ||
       !r.required_number(j, path, "heading_deg", -kMaxHeadingDeg, kMaxHeadingDeg, heading_deg))
     return false;
   if (npc.kind.empty()) return r.fail(Reader::child(path, "kind"), "must not be empty");
@@ -178,7 +177,7 @@ bool read_scene(Reader& r, const json& root, Scene& scene) {
   const std::string path;  // The root's path is empty; children are "name", "boxes[3]", ...
   if (!root.is_object())
     return r.fail("(root)", "expected a JSON object, got " + json_describe(root));
-  if (!r.check_keys(root, path,
+  if (!r.check_keys(root, "(root)",  // a path of its own: fail() drops an empty one
                     {"format", "version", "name", "bounds", "boxes", "terrain", "spawns", "goals",
                      "cameras", "npcs"}))
     return false;
@@ -211,57 +210,10 @@ bool read_scene(Reader& r, const json& root, Scene& scene) {
          r.array_of(root, path, "npcs", kMaxScenePoints, scene.npcs, read_npc);
 }
 
-/// 1-based line and column of a byte offset, as editors count them.
-void line_column(std::string_view text, std::size_t byte, std::size_t& line, std::size_t& column) {
-  line = 1;
-  column = 1;
-  const std::size_t end = std::min(byte, text.size());
-  for (std::size_t i = 0; i < end; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-}
-
 bool parse_impl(std::string_view json_text, std::string_view source_name, Scene& scene,
                 std::string& error) {
   json root;
-  try {
-    root = json::parse(json_text.begin(), json_text.end());
-  } catch (const json::parse_error& e) {
-    // nlohmann reports the offset of the byte after the error; point at the byte itself.
-    std::size_t line = 0, column = 0;
-    line_column(json_text, e.byte > 0 ? e.byte - 1 : 0, line, column);
-    std::string what = e.what();
-    // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: " prefix;
-    // we print our own position.
-    if (const std::size_t colon = what.find(": "); colon != std::string::npos)
-      what = what.substr(colon + 2);
-    error = std::string(source_name) + ": invalid JSON at line " + std::to_string(line) +
-            ", column " + std::to_string(column) + ": " + what;
-    return false;
-  } catch (const json::out_of_range& e) {
-    // A number literal too large for a double ("1e400"): nlohmann gives no position, but it
-    // quotes the literal, so find it in the text.
-    std::string what = e.what();
-    if (const std::size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    std::string where;
-    const std::size_t q0 = what.find('\'');
-    const std::size_t q1 = q0 == std::string::npos ? q0 : what.find('\'', q0 + 1);
-    if (q1 != std::string::npos) {
-      const std::size_t at = json_text.find(what.substr(q0 + 1, q1 - q0 - 1));
-      if (at != std::string_view::npos) {
-        std::size_t line = 0, column = 0;
-        line_column(json_text, at, line, column);
-        where = " at line " + std::to_string(line) + ", column " + std::to_string(column);
-      }
-    }
-    error = std::string(source_name) + ": invalid JSON" + where + ": " + what;
-    return false;
-  }
+  if (!json_io::parse(json_text, source_name, root, error)) return false;
   Scene parsed;
   Reader reader(source_name);
   if (!read_scene(reader, root, parsed)) {
@@ -277,18 +229,9 @@ bool parse_impl(std::string_view json_text, std::string_view source_name, Scene&
 
 bool scene_parse(std::string_view json_text, std::string_view source_name, Scene& scene,
                  std::string& error) {
-  // Anything escaping the reader (allocation failure on a huge file, a library exception we did
-  // not foresee) becomes an error message: a broken file must never take the server down.
-  try {
+  return json_io::guarded(source_name, "scene", error, [&] {
     return parse_impl(json_text, source_name, scene, error);
-  } catch (const std::bad_alloc&) {
-    error = std::string(source_name) + ": out of memory while reading the scene";
-  } catch (const std::exception& e) {
-    error = std::string(source_name) + ": " + e.what();
-  } catch (...) {
-    error = std::string(source_name) + ": unknown error while reading the scene";
-  }
-  return false;
+  });
 }
 
 bool scene_load(const std::filesystem::path& path, Scene& scene, std::string& error) {

@@ -1,7 +1,7 @@
 // Semantic checks of a Scene (scene_load.hpp: scene_validate). The parser has already checked
 // types and per-field ranges with precise JSON paths; these checks need the whole scene (a spawn
 // inside a box, a camera looking at nothing) and also guard scenes built in code.
-#include "world/scene_json_reader.hpp"
+#include "io/json_reader.hpp"
 #include "world/scene_load.hpp"
 #include "world/terrain.hpp"
 
@@ -11,7 +11,7 @@
 namespace foresight {
 namespace {
 
-using scene_json::Reader;
+using json_io::Reader;
 
 bool finite(vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 bool finite(vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
