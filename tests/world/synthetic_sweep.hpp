@@ -1,5 +1,5 @@
 #pragma once
-// Synthetic per-frame body volumes for tests and benchmarks, before real clips exist: a cylinder
+// Synthetic per-frame body volumes for the world tests (independent of any motion library): a cylinder
 // moving along a straight line or a circular arc from the origin, starting toward +Z
 // (segment-local space, as make_segment_shape expects).
 #include "world/body_volume.hpp"
