@@ -14,12 +14,13 @@ bool load_library_or_report(const MotionSource& source, MotionLibrary& lib) {
   return false;
 }
 
-int command_info(const MotionSource& source) {
+int command_info(const MotionSource& source, bool brief) {
   MotionLibrary lib;
   if (!load_library_or_report(source, lib)) return 1;
   std::printf("library %s: %d joints, %zu clips, %d segments, %zu transitions, hash %016" PRIx64 "\n",
               lib.name.c_str(), lib.num_joints(), lib.clips.size(), lib.graph.num_segments(),
               lib.graph.transitions.size(), lib.content_hash);
+  if (brief) return 0;
   for (int s = 0; s < lib.graph.num_segments(); ++s) {
     const Segment& seg = lib.graph.segments[s];
     const SegmentMotion& m = lib.segment_motion[s];

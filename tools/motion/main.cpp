@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(ups, CLI::ignore_case));
 
   auto* info = app.add_subcommand("info", "Clips, segments, transitions and content hash");
+  bool brief = false;
+  info->add_flag("--brief", brief, "Only the one-line summary");
   auto* graph = app.add_subcommand("graph", "Build the automatic graph and report nodes/edges");
   std::string out_dir;
   auto* export_bvh = app.add_subcommand("export-bvh", "Write every clip as a BVH file");
@@ -62,7 +64,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   source.motions_dir = motions;
-  if (*info) return tools::command_info(source);
+  if (*info) return tools::command_info(source, brief);
   if (*graph) return tools::command_graph(source);
   if (*export_bvh) return tools::command_export_bvh(source, out_dir);
   if (*steer) return tools::command_steer(source, steer_options);
