@@ -18,7 +18,7 @@ int bench_collision(const CollisionBenchOptions& o) {
   CollisionWorld world;
   std::string error;
   if (!motion_library_load({o.motions, {}, {}}, lib, error) ||
-      !scene_load(scene_path(o.scene), scene, error) || !collision_world_build(scene, world, error)) {
+      !scene_world_load(o.scene, scene, world, error)) {
     std::fprintf(stderr, "foresight-bench collision: %s\n", error.c_str());
     return 1;
   }

@@ -19,13 +19,9 @@ int bench_lookahead(const LookaheadBenchOptions& o) {
   Scene scene;
   CollisionWorld world;
   std::string error;
-  const auto strategy = strategy_from_name(o.strategy);
-  if (!strategy) {
-    std::fprintf(stderr, "foresight-bench lookahead: unknown strategy '%s' (%s)\n",
-                 o.strategy.c_str(), strategy_names().c_str());
-    return 2;
-  }
-  if (!scene_load(scene_path(o.scene), scene, error) || !collision_world_build(scene, world, error)) {
+  Strategy strategy;
+  if (!strategy_parse(o.strategy, strategy, error) ||
+      !scene_world_load(o.scene, scene, world, error)) {
     std::fprintf(stderr, "foresight-bench lookahead: %s\n", error.c_str());
     return 1;
   }
@@ -50,7 +46,7 @@ int bench_lookahead(const LookaheadBenchOptions& o) {
   if (roots.empty()) return std::fprintf(stderr, "no free placement found\n"), 1;
 
   MotionTreeConfig config;
-  config.strategy = *strategy;
+  config.strategy = strategy;
   config.max_nodes = 1 << 16;
   MotionTree tree(lib, world, config);
   using Clock = std::chrono::steady_clock;

@@ -31,9 +31,7 @@ std::vector<double> lab_intervals(const LabOptions& options) {
 bool lab_load(const std::string& scene_name, LabScene& out, std::string& error) {
   out.name = scene_name;
   if (!motion_library_load({}, out.library, error)) return false;
-  if (!scene_load(scene_path(scene_name), out.scene, error) ||
-      !collision_world_build(out.scene, out.world, error))
-    return false;
+  if (!scene_world_load(scene_name, out.scene, out.world, error)) return false;
   const std::filesystem::path dir = data_dir() / "recordings";
   std::string why;
   if (!recording_load(dir / (scene_name + "_train.json"), out.train, why)) {

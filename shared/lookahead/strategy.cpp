@@ -23,4 +23,11 @@ std::string strategy_names() {
   return out;
 }
 
+bool strategy_parse(std::string_view name, Strategy& out, std::string& error) {
+  const auto s = strategy_from_name(name);
+  if (!s) return error = "unknown strategy '" + std::string(name) + "' (" + strategy_names() + ")", false;
+  out = *s;
+  return true;
+}
+
 }  // namespace foresight

@@ -21,5 +21,7 @@ std::string_view strategy_name(Strategy s);
 std::optional<Strategy> strategy_from_name(std::string_view name);
 /// The accepted names, for error messages: "breadth-first|command|...".
 std::string strategy_names();
+/// strategy_from_name with the error every CLI prints: "unknown strategy 'x' (breadth-first|...)".
+bool strategy_parse(std::string_view name, Strategy& out, std::string& error);
 
 }  // namespace foresight

@@ -52,8 +52,7 @@ TEST(DefaultLibrary, CrouchWalkPassesUnderTheBeamWhereWalkingHitsIt) {
   Scene scene;
   CollisionWorld world;
   std::string error;
-  ASSERT_TRUE(scene_load(scene_path("obstacles"), scene, error)) << error;
-  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_TRUE(scene_world_load("obstacles", scene, world, error)) << error;
   const int crouch = straight_segment(lib, kTagCrouch | kTagLocomotion, kTagTurn);
   const int walk = straight_segment(lib, kTagLocomotion, kTagCrouch | kTagTurn | kTagRun | kTagIdle);
   ASSERT_GE(crouch, 0);
@@ -78,8 +77,7 @@ TEST(DefaultLibrary, WalkingIntoAMazeWallIsInfeasible) {
   Scene scene;
   CollisionWorld world;
   std::string error;
-  ASSERT_TRUE(scene_load(scene_path("maze"), scene, error)) << error;
-  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_TRUE(scene_world_load("maze", scene, world, error)) << error;
   const int walk = straight_segment(lib, kTagLocomotion, kTagCrouch | kTagTurn | kTagRun | kTagIdle);
   ASSERT_GE(walk, 0);
   const SpawnPoint& spawn = scene.spawns.front();

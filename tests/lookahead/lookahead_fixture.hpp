@@ -11,6 +11,13 @@
 
 namespace foresight::test {
 
+// Slow builds (sanitizers, Debug) get shorter replays so the suite stays fast there.
+#if defined(__SANITIZE_ADDRESS__) || !defined(NDEBUG)
+inline constexpr bool kSlowBuild = true;
+#else
+inline constexpr bool kSlowBuild = false;
+#endif
+
 inline const MotionLibrary& default_library() {
   static const MotionLibrary lib = motion_library_default();
   return lib;
@@ -27,7 +34,7 @@ inline const LoadedScene& loaded_scene(const std::string& name) {
   if (it == cache.end()) {
     LoadedScene s;
     std::string error;
-    if (!scene_load(scene_path(name), s.scene, error) || !collision_world_build(s.scene, s.world, error))
+    if (!scene_world_load(name, s.scene, s.world, error))
       ADD_FAILURE() << error;
     it = cache.emplace(name, std::move(s)).first;
   }

@@ -17,12 +17,6 @@ namespace {
 using test::default_library;
 using test::loaded_scene;
 
-// Slow builds (sanitizers, Debug) get shorter runs so the suite stays fast there.
-#if defined(__SANITIZE_ADDRESS__) || !defined(NDEBUG)
-constexpr bool kSlowBuild = true;
-#else
-constexpr bool kSlowBuild = false;
-#endif
 
 std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -321,7 +315,7 @@ TEST(RecordingGenerator, IsDeterministic) {
   config.scene = "maze";
   config.name = "maze_train";
   config.seed = 7;
-  config.replay.max_seconds = kSlowBuild ? 8.0 : 20.0;
+  config.replay.max_seconds = test::kSlowBuild ? 8.0 : 20.0;
   const auto dir = test::scratch_dir();
   std::string texts[2];
   for (int i = 0; i < 2; ++i) {

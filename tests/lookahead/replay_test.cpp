@@ -13,12 +13,6 @@ namespace {
 using test::default_library;
 using test::loaded_scene;
 
-#if defined(__SANITIZE_ADDRESS__) || !defined(NDEBUG)
-constexpr bool kSlowBuild = true;
-#else
-constexpr bool kSlowBuild = false;
-#endif
-
 const Recording& shipped(const std::string& name) {
   static std::map<std::string, Recording> cache;
   auto it = cache.find(name);
@@ -36,7 +30,7 @@ const CollisionWorld& world_of(const Recording& r) { return loaded_scene(r.scene
 TEST(Replay, ShippedRecordingsReachTheirGoalsWithoutCollisions) {
   // Slow builds replay the training recordings only (the sanitizer run stays short).
   const auto& lib = default_library();
-  const std::vector<std::string> names = kSlowBuild ? std::vector<std::string>{"maze_train", "obstacles_train"}
+  const std::vector<std::string> names = test::kSlowBuild ? std::vector<std::string>{"maze_train", "obstacles_train"}
                                                     : std::vector<std::string>{"maze_train", "maze_eval",
                                                                                "obstacles_train", "obstacles_eval"};
   for (const std::string& name : names) {
@@ -73,7 +67,7 @@ TEST(Replay, ShippedRecordingsReachTheirGoalsWithoutCollisions) {
 TEST(Replay, IsDeterministicWithAnExpansionBudget) {
   const Recording& rec = shipped("maze_train");
   ReplayConfig config;
-  config.max_seconds = kSlowBuild ? 10.0 : 40.0;
+  config.max_seconds = test::kSlowBuild ? 10.0 : 40.0;
   const ReplayResult a = replay_recording(default_library(), world_of(rec), rec, config);
   const ReplayResult b = replay_recording(default_library(), world_of(rec), rec, config);
   ASSERT_FALSE(a.path.empty());
@@ -87,7 +81,7 @@ TEST(Replay, WithNoBudgetTheAvatarHoldsAndNeverCollides) {
   const Recording& rec = shipped("obstacles_train");
   ReplayConfig config;
   config.expansions_per_frame = 0;
-  config.max_seconds = kSlowBuild ? 3.0 : 20.0;
+  config.max_seconds = test::kSlowBuild ? 3.0 : 20.0;
   const ReplayResult r = replay_recording(default_library(), world_of(rec), rec, config);
   ASSERT_TRUE(r.error.empty()) << r.error;
   EXPECT_FALSE(r.reached_goal);
@@ -101,7 +95,7 @@ TEST(Replay, EveryStrategyReplaysWithoutCollisions) {
   const Recording& train = shipped("maze_train");
   const Recording& eval = shipped("maze_eval");
   ReplayConfig config;
-  config.max_seconds = kSlowBuild ? 6.0 : 30.0;
+  config.max_seconds = test::kSlowBuild ? 6.0 : 30.0;
   config.statistics = learn_statistics(lib, world_of(train), train, config);
   ASSERT_EQ(config.statistics.probability.size(), lib.graph.transitions.size());
   for (int s = 0; s < kNumStrategies; ++s) {
@@ -119,7 +113,7 @@ TEST(Replay, LearnedStatisticsFavourTheTransitionsTaken) {
   const auto& lib = default_library();
   const Recording& train = shipped("maze_train");
   ReplayConfig config;
-  config.max_seconds = kSlowBuild ? 3.0 : 30.0;
+  config.max_seconds = test::kSlowBuild ? 3.0 : 30.0;
   config.tree.strategy = Strategy::kBreadthFirst;  // learn_statistics uses kCommand whatever this says
   const TransitionStatistics stats = learn_statistics(lib, world_of(train), train, config);
   config.tree.strategy = Strategy::kCommand;
@@ -134,7 +128,7 @@ TEST(Replay, TheGeneratorsRunIsReproducedByReplayingItsRecording) {
   RecordingGeneratorConfig config;
   config.scene = "obstacles";
   config.seed = 3;
-  config.replay.max_seconds = kSlowBuild ? 8.0 : 25.0;
+  config.replay.max_seconds = test::kSlowBuild ? 8.0 : 25.0;
   GeneratedRecording g;
   std::string error;
   ASSERT_TRUE(recording_generate(lib, obstacles.scene, obstacles.world, config, g, error)) << error;
@@ -151,7 +145,7 @@ TEST(Replay, TheGeneratorsRunIsReproducedByReplayingItsRecording) {
 TEST(Replay, ClipTimeFollowsDisplayTime) {
   const Recording& rec = shipped("maze_train");
   ReplayConfig at30, at15;
-  at30.max_seconds = at15.max_seconds = kSlowBuild ? 2.0 : 8.0;
+  at30.max_seconds = at15.max_seconds = test::kSlowBuild ? 2.0 : 8.0;
   at15.frame_interval_s = 1.0 / 15.0;
   at15.expansions_per_frame = 2 * at30.expansions_per_frame;
   const ReplayResult a = replay_recording(default_library(), world_of(rec), rec, at30);

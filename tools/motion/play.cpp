@@ -19,7 +19,7 @@ int command_play(const MotionSource& source, const PlayOptions& o) {
   Scene scene;
   CollisionWorld world;
   std::string error;
-  if (!scene_load(scene_path(o.scene), scene, error) || !collision_world_build(scene, world, error)) {
+  if (!scene_world_load(o.scene, scene, world, error)) {
     std::fprintf(stderr, "foresight-motion: %s\n", error.c_str());
     return 1;
   }

@@ -18,20 +18,14 @@ int command_steer(const MotionSource& source, const SteerOptions& o) {
   Scene scene;
   CollisionWorld world;
   std::string error;
-  const auto strategy = strategy_from_name(o.strategy);
-  if (!strategy) {
-    std::fprintf(stderr, "foresight-motion: unknown strategy '%s' (%s)\n", o.strategy.c_str(),
-                 strategy_names().c_str());
-    return 2;
-  }
-  if (!recording_load(o.recording, recording, error) ||
-      !scene_load(scene_path(recording.scene), scene, error) ||
-      !collision_world_build(scene, world, error)) {
+  Strategy strategy;
+  if (!strategy_parse(o.strategy, strategy, error) || !recording_load(o.recording, recording, error) ||
+      !scene_world_load(recording.scene, scene, world, error)) {
     std::fprintf(stderr, "foresight-motion: %s\n", error.c_str());
     return 1;
   }
   ReplayConfig config;
-  config.tree.strategy = *strategy;
+  config.tree.strategy = strategy;
   config.expansions_per_frame = o.expansions_per_frame;
   config.max_seconds = o.max_seconds;
   ReplayRun run(lib, world, {recording.start_pos_m, recording.start_heading_rad},

@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
   Scene scene;
   CollisionWorld world;
   std::string error;
-  if (!motion_library_load(source, lib, error) || !scene_load(scene_path(scene_name), scene, error) ||
-      !collision_world_build(scene, world, error)) {
+  if (!motion_library_load(source, lib, error) ||
+      !scene_world_load(scene_name, scene, world, error)) {
     std::fprintf(stderr, "foresight-record: %s\n", error.c_str());
     return 1;
   }
