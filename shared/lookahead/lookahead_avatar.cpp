@@ -36,13 +36,13 @@ void LookaheadAvatar::set_input(const ControlInput& input) {
 
 GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(budget); }
 
-AvatarStepResult LookaheadAvatar::step() {
+AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   AvatarStepResult result;
   ++playback_.frame;
   if (!playback_at_end(library_, playback_)) return result;
 
   result.segment_changed = true;
-  const int child = tree_.select_child();
+  const int child = tree_.select_child(veto);
   // The naive baseline kept children unchecked: it finds out only now, and stops.
   const bool child_free =
       child >= 0 && (tree_.config().check_collisions ||
@@ -59,7 +59,8 @@ AvatarStepResult LookaheadAvatar::step() {
   ++fallbacks_;
   const Placement here = playback_next_start(library_, playback_);
   if (fallback_segment_ >= 0 &&
-      segment_feasible(world_, library_.segment_shapes[fallback_segment_], here)) {
+      segment_feasible(world_, library_.segment_shapes[fallback_segment_], here) &&
+      (veto == nullptr || !veto->blocks(fallback_segment_, here))) {
     playback_ = {fallback_segment_, 0, here, -1};
     tree_.reset(fallback_segment_, here);
   } else {

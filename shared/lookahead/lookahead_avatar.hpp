@@ -28,7 +28,8 @@ class LookaheadAvatar {
   /// Non-finite or over-long directions are refused: the input becomes "stop" and is counted.
   void set_input(const ControlInput& input);
   GrowResult grow(const GrowBudget& budget);
-  AvatarStepResult step();
+  /// `veto` (optional) rules out children at the decision, and the idle fallback too.
+  AvatarStepResult step(const ChildVeto* veto = nullptr);
 
   const PlaybackState& playback() const { return playback_; }
   Placement root() const { return playback_root(library_, playback_); }

@@ -208,13 +208,15 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
   return result;
 }
 
-int MotionTree::select_child() const {
+int MotionTree::select_child(const ChildVeto* veto) const {
   const auto& w = config_.selection_weights;
   int best = -1;
   float best_sum = -1.0f;
   uint32_t best_order = 0;
   for (int c = nodes_[static_cast<size_t>(root_)].first_child; c >= 0;
        c = nodes_[static_cast<size_t>(c)].next_sibling) {
+    if (veto != nullptr && veto->blocks(nodes_[static_cast<size_t>(c)].segment, nodes_[static_cast<size_t>(c)].start))
+      continue;
     // Branch sum (4.3): every node of the branch, weighted by its depth below the root.
     float sum = 0.0f;
     visit_stack_.clear();

@@ -96,6 +96,16 @@ struct MotionTreeNode {
   uint16_t expanded = 0;    ///< 1 once its successors were placed.
 };
 
+/// A last word at decision time on a child the tree would pick (the server vetoes motions that
+/// would run into other avatars' committed motion: lookahead/reservations.hpp).
+class ChildVeto {
+ public:
+  virtual bool blocks(int segment, const Placement& start) const = 0;
+
+ protected:
+  ~ChildVeto() = default;
+};
+
 class MotionTree {
  public:
   MotionTree(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config);
@@ -117,8 +127,9 @@ class MotionTree {
   GrowResult grow(const GrowBudget& budget);
 
   /// The child of the root with the largest weighted branch sum under the current command, or -1
-  /// when the root has no feasible child. Ties go to the earlier child.
-  int select_child() const;
+  /// when the root has no feasible child (none that `veto` lets through). Ties go to the earlier
+  /// child.
+  int select_child(const ChildVeto* veto = nullptr) const;
 
   /// Makes `child` (a child of the root) the root and frees every other branch. Returns the graph
   /// transition that enters it.

@@ -5,6 +5,7 @@
 //   foresight-motion play [--scene maze] [--seconds 30] [--seed 1] [--motions DIR]
 //   foresight-motion steer --recording FILE [--strategy command] [--expansions 300]
 #include "commands.hpp"
+#include "library/motion_source_cli.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -16,22 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();  // --motions and --threshold may follow the subcommand
   MotionSource source;
-  std::string motions;
-  app.add_option("--motions", motions,
-                 "Folder of BVH clips to use instead of the built-in default library")
-      ->check(CLI::ExistingDirectory);
-  app.add_option("--threshold", source.graph.threshold_rms_m,
-                 "Automatic graph: max RMS point distance of a transition, metres");
-  const std::map<std::string, LengthUnit> units{{"auto", LengthUnit::kAuto},
-                                                {"m", LengthUnit::kMetres},
-                                                {"cm", LengthUnit::kCentimetres},
-                                                {"in", LengthUnit::kInches}};
-  const std::map<std::string, UpAxis> ups{{"auto", UpAxis::kAuto}, {"y", UpAxis::kYUp},
-                                          {"z", UpAxis::kZUp}, {"x", UpAxis::kXUp}};
-  app.add_option("--bvh-units", source.import.unit, "Length unit of the BVH files (default: detected)")
-      ->transform(CLI::CheckedTransformer(units, CLI::ignore_case));
-  app.add_option("--bvh-up", source.import.up, "Up axis of the BVH files (default: detected)")
-      ->transform(CLI::CheckedTransformer(ups, CLI::ignore_case));
+  add_motion_source_options(app, source);
 
   auto* info = app.add_subcommand("info", "Clips, segments, transitions and content hash");
   bool brief = false;
@@ -63,7 +49,6 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 36000.0));
 
   CLI11_PARSE(app, argc, argv);
-  source.motions_dir = motions;
   if (*info) return tools::command_info(source, brief);
   if (*graph) return tools::command_graph(source);
   if (*export_bvh) return tools::command_export_bvh(source, out_dir);

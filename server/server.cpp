@@ -1,0 +1,537 @@
+#include "server.hpp"
+
+#include "protocol/quantize.hpp"
+#include "world/data_paths.hpp"
+#include "world/scene_load.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+namespace foresight::server {
+
+struct Server::Player {
+  protocol::Endpoint endpoint;
+  uint32_t session = 0;
+  uint32_t avatar_id = 0;
+  std::string name;
+  std::unique_ptr<LookaheadAvatar> avatar;
+  Clock::time_point last_heard{};
+  bool any_input = false;
+  uint32_t last_input_seq = 0;  ///< Newest command applied.
+  uint32_t ack_snapshot = 0;
+  uint32_t echo_client_time_ms = 0;
+  double tokens = 0;            ///< Packet rate limit (token bucket).
+  Clock::time_point tokens_at{};
+};
+
+namespace {
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+bool same_endpoint(const protocol::Endpoint& a, const protocol::Endpoint& b) {
+  return a.address() == b.address() && a.port() == b.port();
+}
+
+// Frames of clip time due at the end of tick `tick` (clips play in real time at `fps` whatever the
+// tick rate).
+int64_t frames_due(uint32_t tick, double fps, int tick_hz) {
+  return static_cast<int64_t>(std::floor(static_cast<double>(tick) * fps / tick_hz + 1e-9));
+}
+
+}  // namespace
+
+Server::Server() = default;
+Server::~Server() = default;
+
+bool Server::start(const ServerConfig& config, std::string& error) {
+  config_ = config;
+  config_.tick_hz = std::clamp(config_.tick_hz, 1, 240);
+  config_.snapshot_hz = std::clamp(config_.snapshot_hz, 1, config_.tick_hz);
+  config_.threads = std::clamp(config_.threads, 1, 64);
+  if (!scene_world_load(config_.scene, scene_, world_, error)) return false;
+  if (!motion_library_load(config_.motions, library_, error)) return false;
+  spawn_segment_ = find_fallback_segment(library_);
+  if (spawn_segment_ < 0) {
+    error = "motion library '" + library_.name + "' has no idle segment to spawn avatars in";
+    return false;
+  }
+  tree_config_.strategy = config_.strategy;
+  tree_config_.max_nodes = std::max(config_.tree_max_nodes, 16);
+  tree_config_.max_depth = std::max(config_.tree_max_depth, 1);
+  if (!socket_.open(config_.bind_address, config_.port, error)) return false;
+  receive_buffer_.resize(protocol::kMaxDatagramBytes + 1);
+  reservations_.configure(scene_.bounds);
+  workers_ = std::make_unique<LookaheadWorkers>(config_.threads);
+  grow_deadline_.resize(static_cast<size_t>(config_.threads));
+  players_.reserve(static_cast<size_t>(config_.max_players));
+  started_ = Clock::now();
+  std::fprintf(stderr,
+               "foresight-server: scene %s, library %s (%d segments, hash %016llx), UDP %s:%u, "
+               "%d Hz ticks, %d Hz snapshots, %d look-ahead thread(s), strategy %d\n",
+               scene_.name.c_str(), library_.name.c_str(), library_.graph.num_segments(),
+               static_cast<unsigned long long>(library_.content_hash), config_.bind_address.c_str(),
+               port(), config_.tick_hz, config_.snapshot_hz, config_.threads,
+               static_cast<int>(config_.strategy));
+  return true;
+}
+
+int Server::num_players() const { return static_cast<int>(players_.size()); }
+
+const LookaheadAvatar* Server::avatar(uint32_t avatar_id) const {
+  for (const auto& p : players_)
+    if (p->avatar_id == avatar_id) return p->avatar.get();
+  return nullptr;
+}
+
+std::vector<uint32_t> Server::avatar_ids() const {
+  std::vector<uint32_t> ids;
+  for (const auto& p : players_) ids.push_back(p->avatar_id);
+  return ids;
+}
+
+void Server::run() {
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.tick_hz));
+  Clock::time_point next = Clock::now();
+  while (!stop_requested_.load()) {
+    run_tick(Clock::now());
+    next += period;
+    const Clock::time_point now = Clock::now();
+    if (next < now - period) next = now;  // far behind (debugger, suspend): do not spiral
+    std::this_thread::sleep_until(next);
+  }
+}
+
+void Server::run_tick(Clock::time_point now) {
+  const Clock::time_point tick_start = now;
+  ++tick_;
+  challenges_this_tick_ = 0;
+  receive(now);
+  expire(now);
+  advance();
+  TickRecord record;
+  grow_trees(tick_start, Clock::now(), record);
+  send_snapshots(now);
+  check_contacts();
+  record.players = num_players();
+  record.tick_ms = static_cast<float>(ms_between(tick_start, Clock::now()));
+  stats_.record(record, record.tick_ms > 1000.0f / static_cast<float>(config_.tick_hz));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Receiving
+
+void Server::receive(Clock::time_point now) {
+  protocol::Endpoint from;
+  // Bounded: a flood cannot keep the tick in here (what is left waits for the next tick).
+  for (int budget = 20000; budget > 0; --budget) {
+    const ptrdiff_t n = socket_.receive(receive_buffer_, from);
+    if (n < 0) break;
+    ++counters_.packets_in;
+    counters_.bytes_in += static_cast<uint64_t>(n);
+    protocol::DropReason reason;
+    const wire::Packet* packet =
+        protocol::packet_read({receive_buffer_.data(), static_cast<size_t>(n)}, reason);
+    if (packet == nullptr) {
+      counters_.drops.add(reason);
+      continue;
+    }
+    handle(from, *packet, static_cast<size_t>(n), now);
+  }
+}
+
+Server::Player* Server::find_player(const protocol::Endpoint& from) {
+  for (auto& p : players_)
+    if (same_endpoint(p->endpoint, from)) return p.get();
+  return nullptr;
+}
+
+void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, size_t bytes,
+                    Clock::time_point now) {
+  using wire::Message;
+  switch (packet.message_type()) {
+    case Message::ConnectRequest:
+      on_connect_request(from, *packet.message_as_ConnectRequest(), bytes, now);
+      return;
+    case Message::ConnectResponse:
+      on_connect_response(from, *packet.message_as_ConnectResponse(), now);
+      return;
+    case Message::Input:
+    case Message::Heartbeat:
+    case Message::Disconnect:
+    case Message::StatsRequest: break;
+    default: counters_.drops.add(protocol::DropReason::kUnexpected); return;
+  }
+  // In-session messages: the sender must be a player and name its session.
+  Player* p = find_player(from);
+  uint32_t session = 0;
+  if (auto* m = packet.message_as_Input()) session = m->session();
+  if (auto* m = packet.message_as_Heartbeat()) session = m->session();
+  if (auto* m = packet.message_as_Disconnect()) session = m->session();
+  if (auto* m = packet.message_as_StatsRequest()) session = m->session();
+  if (p == nullptr || p->session != session) {
+    counters_.drops.add(protocol::DropReason::kUnexpected);
+    return;
+  }
+  // Token bucket: max_packets_per_s sustained, one second's worth of burst.
+  const double rate = config_.max_packets_per_s;
+  p->tokens = std::min(rate, p->tokens + rate * std::chrono::duration<double>(now - p->tokens_at).count());
+  p->tokens_at = now;
+  if (p->tokens < 1.0) {
+    counters_.drops.add(protocol::DropReason::kRateLimited);
+    return;
+  }
+  p->tokens -= 1.0;
+  p->last_heard = now;
+  switch (packet.message_type()) {
+    case Message::Input: on_input(*p, *packet.message_as_Input()); break;
+    case Message::Heartbeat: p->echo_client_time_ms = packet.message_as_Heartbeat()->client_time_ms(); break;
+    case Message::StatsRequest: send_stats(*p); break;
+    case Message::Disconnect:
+      ++counters_.sessions_closed;
+      for (size_t i = 0; i < players_.size(); ++i)
+        if (players_[i].get() == p) {
+          remove_player(i);
+          break;
+        }
+      break;
+    default: break;
+  }
+}
+
+void Server::on_connect_request(const protocol::Endpoint& from, const wire::ConnectRequest& m,
+                                size_t bytes, Clock::time_point now) {
+  if (bytes < protocol::kMinConnectRequestBytes) {
+    counters_.drops.add(protocol::DropReason::kTooSmall);  // unpadded: could amplify
+    return;
+  }
+  if (m.protocol() != protocol::kProtocolVersion) {
+    send_refuse(from, wire::RefuseReason::ProtocolVersion,
+                "protocol version " + std::to_string(m.protocol()) + " is not the server's " +
+                    std::to_string(protocol::kProtocolVersion) + ": update the client");
+    return;
+  }
+  if (challenges_this_tick_ >= config_.max_challenges_per_tick) {
+    ++counters_.challenges_capped;
+    return;
+  }
+  ++challenges_this_tick_;
+  std::array<uint8_t, 16> storage;
+  const auto seconds = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count());
+  const protocol::Cookie cookie = cookies_.make(protocol::endpoint_address_bytes(from, storage), from.port(), seconds);
+  auto& fbb = writer_.begin();
+  const auto c = fbb.CreateVector(cookie.data(), cookie.size());
+  send(writer_.finish(wire::CreateChallenge(fbb, c)), from);
+  ++counters_.challenges_sent;
+}
+
+void Server::on_connect_response(const protocol::Endpoint& from, const wire::ConnectResponse& m,
+                                 Clock::time_point now) {
+  if (Player* existing = find_player(from)) {  // our Accept was lost: say it again
+    send_accept(*existing);
+    return;
+  }
+  std::array<uint8_t, 16> storage;
+  const auto seconds = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count());
+  const auto* cookie = m.cookie();
+  if (cookie == nullptr ||
+      !cookies_.check({cookie->data(), cookie->size()}, protocol::endpoint_address_bytes(from, storage),
+                      from.port(), seconds)) {
+    send_refuse(from, wire::RefuseReason::BadCookie, "connection cookie wrong or expired: connect again");
+    return;
+  }
+  if (m.protocol() != protocol::kProtocolVersion) {
+    send_refuse(from, wire::RefuseReason::ProtocolVersion, "protocol version mismatch: update the client");
+    return;
+  }
+  if (m.library_hash() != library_.content_hash) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "motion library differs: yours has hash %016llx, the server's '%s' has %016llx; "
+                  "start with the same --motions as the server",
+                  static_cast<unsigned long long>(m.library_hash()), library_.name.c_str(),
+                  static_cast<unsigned long long>(library_.content_hash));
+    send_refuse(from, wire::RefuseReason::Library, text);
+    return;
+  }
+  Placement spawn;
+  if (num_players() >= config_.max_players || !find_spawn(spawn)) {
+    send_refuse(from, wire::RefuseReason::ServerFull,
+                num_players() >= config_.max_players ? "server full" : "no free spawn place: try again later");
+    return;
+  }
+  auto p = std::make_unique<Player>();
+  p->endpoint = from;
+  p->session = next_session_++;
+  p->avatar_id = next_avatar_++;
+  p->name = m.client_name() ? m.client_name()->str().substr(0, 64) : std::string();
+  p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, spawn);
+  p->last_heard = now;
+  p->tokens = config_.max_packets_per_s;
+  p->tokens_at = now;
+  // Reserve the spawn at once, so a second player joining this tick keeps clear of it.
+  reservations_.add(static_cast<int>(p->avatar_id), library_, spawn_segment_, 0, spawn);
+  send_accept(*p);
+  ++counters_.sessions_opened;
+  std::fprintf(stderr, "foresight-server: player %u '%s' joined from %s:%u (session %u, %d players)\n",
+               p->avatar_id, p->name.c_str(), from.address().to_string().c_str(), from.port(), p->session,
+               num_players() + 1);
+  players_.push_back(std::move(p));
+}
+
+void Server::on_input(Player& p, const wire::Input& m) {
+  p.ack_snapshot = std::max(p.ack_snapshot, m.ack_snapshot());
+  p.echo_client_time_ms = m.client_time_ms();
+  const auto* commands = m.commands();
+  if (commands == nullptr || commands->size() == 0) return;
+  if (commands->size() > static_cast<flatbuffers::uoffset_t>(protocol::kInputRedundancy)) {
+    counters_.drops.add(protocol::DropReason::kInvalidInput);
+    return;
+  }
+  // Commands are held directions: the newest one not yet applied is what the player holds now.
+  // Older ones in the packet were either applied already or superseded.
+  const wire::InputCommand* newest = commands->Get(commands->size() - 1);
+  if (p.any_input && static_cast<int32_t>(newest->sequence() - p.last_input_seq) <= 0) return;
+  ControlInput in;
+  in.camera_dir = vec2(protocol::dequantize_unit(newest->dir_x()), protocol::dequantize_unit(newest->dir_y()));
+  in.camera_yaw_rad = protocol::dequantize_angle(newest->camera_yaw());
+  in.crouch = (static_cast<uint8_t>(newest->buttons()) & static_cast<uint8_t>(wire::Buttons::Crouch)) != 0;
+  if (glm::length(in.camera_dir) > 1.0f) {
+    // A corner of the square: legal bytes, but longer than a unit stick. Normalise, do not reject:
+    // a diagonal key pair quantises here.
+    in.camera_dir = glm::normalize(in.camera_dir);
+  }
+  p.avatar->set_input(in);
+  p.last_input_seq = newest->sequence();
+  p.any_input = true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sending
+
+void Server::send(std::span<const uint8_t> bytes, const protocol::Endpoint& to) {
+  if (socket_.send(bytes, to)) {
+    ++counters_.packets_out;
+    counters_.bytes_out += bytes.size();
+  } else {
+    ++counters_.send_failures;
+  }
+}
+
+void Server::send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message) {
+  auto& fbb = writer_.begin();
+  const auto text = fbb.CreateString(message);
+  send(writer_.finish(wire::CreateRefuse(fbb, reason, text, library_.content_hash)), to);
+  ++counters_.refused;
+}
+
+void Server::send_accept(const Player& p) {
+  auto& fbb = writer_.begin();
+  const auto scene = fbb.CreateString(scene_.name);
+  const auto lib = fbb.CreateString(library_.name);
+  send(writer_.finish(wire::CreateAccept(fbb, p.session, p.avatar_id, scene, lib, library_.content_hash,
+                                         static_cast<uint16_t>(config_.tick_hz),
+                                         static_cast<uint16_t>(config_.snapshot_hz))),
+       p.endpoint);
+}
+
+void Server::send_stats(const Player& p) {
+  const TickRecord mean = stats_.mean();
+  auto& fbb = writer_.begin();
+  wire::ServerStatsBuilder b(fbb);
+  b.add_tick(tick_);
+  b.add_players(static_cast<uint32_t>(num_players()));
+  b.add_tick_hz(static_cast<uint16_t>(config_.tick_hz));
+  b.add_tick_ms_p50(stats_.tick_ms_percentile(50));
+  b.add_tick_ms_p99(stats_.tick_ms_percentile(99));
+  b.add_tick_ms_max(stats_.tick_ms_max());
+  b.add_overruns(stats_.overruns());
+  b.add_budget_ms_mean(mean.budget_ms);
+  b.add_lookahead_ms_mean(mean.lookahead_ms);
+  b.add_expansions_per_tick_mean(static_cast<float>(mean.expansions));
+  b.add_tree_size_mean(mean.tree_size_mean);
+  b.add_tree_size_min(static_cast<uint32_t>(std::max(0, mean.tree_size_min)));
+  b.add_packets_in(counters_.packets_in);
+  b.add_packets_dropped(counters_.drops.total());
+  b.add_avatar_contacts(counters_.avatar_contacts);
+  send(writer_.finish(b.Finish()), p.endpoint);
+}
+
+void Server::send_snapshots(Clock::time_point now) {
+  snapshot_accumulator_ += static_cast<double>(config_.snapshot_hz) / config_.tick_hz;
+  if (snapshot_accumulator_ < 1.0) return;
+  snapshot_accumulator_ -= 1.0;
+  ++snapshot_tick_;
+  snapshot_states_.clear();
+  for (const auto& p : players_) {
+    const PlaybackState& s = p->avatar->playback();
+    wire::AvatarState a(p->avatar_id, protocol::quantize_mm(s.segment_start.pos_m.x),
+                        protocol::quantize_mm(s.segment_start.pos_m.y), s.incoming_transition,
+                        static_cast<uint16_t>(s.segment), protocol::quantize_angle(s.segment_start.heading_rad),
+                        static_cast<uint8_t>(std::clamp(s.frame, 0, 255)),
+                        p->avatar->tree().node(p->avatar->tree().root()).first_child < 0 ? protocol::kAvatarFallback
+                                                                                         : protocol::kAvatarNone,
+                        0);
+    snapshot_states_.push_back(a);
+  }
+  // Split over parts that fit the datagram budget (header and vector overhead < 100 bytes).
+  constexpr size_t kPerPart = (protocol::kMaxDatagramBytes - 100) / sizeof(wire::AvatarState);
+  const size_t total = snapshot_states_.size();
+  const size_t parts = std::max<size_t>(1, (total + kPerPart - 1) / kPerPart);
+  const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
+  for (const auto& p : players_) {
+    for (size_t part = 0; part < parts; ++part) {
+      const size_t begin = part * kPerPart, end = std::min(total, begin + kPerPart);
+      // Mark the receiver's own avatar (flags are per receiver; restore after).
+      for (size_t i = begin; i < end; ++i)
+        if (snapshot_states_[i].id() == p->avatar_id)
+          snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() | protocol::kAvatarYours);
+      auto& fbb = writer_.begin();
+      const auto avatars = fbb.CreateVectorOfStructs(snapshot_states_.data() + begin, end - begin);
+      const auto bytes = writer_.finish(wire::CreateSnapshot(
+          fbb, snapshot_tick_, static_cast<uint8_t>(part), static_cast<uint8_t>(parts), p->last_input_seq,
+          p->echo_client_time_ms, server_ms, avatars));
+      for (size_t i = begin; i < end; ++i)
+        if (snapshot_states_[i].id() == p->avatar_id)
+          snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() & ~protocol::kAvatarYours);
+      send(bytes, p->endpoint);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Simulation
+
+void Server::expire(Clock::time_point now) {
+  const auto timeout = std::chrono::duration<double>(config_.session_timeout_s);
+  for (size_t i = players_.size(); i-- > 0;) {
+    if (now - players_[i]->last_heard > timeout) {
+      std::fprintf(stderr, "foresight-server: player %u timed out\n", players_[i]->avatar_id);
+      ++counters_.sessions_timed_out;
+      remove_player(i);
+    }
+  }
+}
+
+void Server::remove_player(size_t index) {
+  std::fprintf(stderr, "foresight-server: player %u left (%d players)\n", players_[index]->avatar_id,
+               num_players() - 1);
+  players_.erase(players_.begin() + static_cast<ptrdiff_t>(index));
+}
+
+bool Server::find_spawn(Placement& out) const {
+  // Around the scene's spawn points (in order), on rings 0.9 m apart: the first place where the
+  // idle segment is free of the scene and of every avatar's reservation.
+  for (int ring = 0; ring <= 12; ++ring) {
+    const int around = ring == 0 ? 1 : 6 * ring;
+    for (const SpawnPoint& sp : scene_.spawns) {
+      for (int k = 0; k < around; ++k) {
+        const float a = kTwoPi * static_cast<float>(k) / static_cast<float>(around);
+        const Placement p{sp.pos_m + 0.9f * static_cast<float>(ring) * vec2(std::sin(a), std::cos(a)), sp.heading_rad};
+        if (!scene_.bounds.contains(p.pos_m)) continue;
+        if (!segment_feasible(world_, library_.segment_shapes[static_cast<size_t>(spawn_segment_)], p)) continue;
+        if (reservations_.blocks(-1, library_, spawn_segment_, p)) continue;
+        out = p;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void Server::advance() {
+  // Reservations: every avatar's committed motion as it stands now.
+  reservations_.clear();
+  for (const auto& p : players_) {
+    const PlaybackState& s = p->avatar->playback();
+    reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, s.frame, s.segment_start);
+  }
+  const double fps = library_.clips.empty() ? 30.0 : library_.clips.front().fps;
+  const int64_t due = frames_due(tick_, fps, config_.tick_hz) - frames_due(tick_ - 1, fps, config_.tick_hz);
+  for (const auto& p : players_) {
+    for (int64_t f = 0; f < due; ++f) {
+      const ReservationVeto veto(reservations_, library_, static_cast<int>(p->avatar_id));
+      const AvatarStepResult r = p->avatar->step(&veto);
+      if (r.fallback) ++counters_.fallbacks;
+      if (r.segment_changed) {  // committed: reserve it now for the players deciding after
+        const PlaybackState& s = p->avatar->playback();
+        reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, 0, s.segment_start);
+      }
+    }
+  }
+}
+
+void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record) {
+  const size_t n = players_.size();
+  if (n == 0) return;
+  const double period_ms = 1000.0 / config_.tick_hz;
+  // What the tick leaves: the period minus what was spent so far and a margin for the rest of the
+  // tick (snapshots), capped.
+  const double budget_ms = std::clamp(period_ms - ms_between(tick_start, now) - config_.tick_safety_margin_ms, 0.0,
+                                      config_.lookahead_budget_ms);
+  record.budget_ms = static_cast<float>(budget_ms);
+  // Shared by need: a thin tree or a decision coming soon asks for more.
+  grow_weight_.resize(n);
+  grow_expansions_.assign(n, 0);
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const LookaheadAvatar& a = *players_[i]->avatar;
+    const int left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
+    const double thin = std::clamp(1.0 - a.tree().num_nodes() / 64.0, 0.0, 1.0);
+    const double soon = std::clamp(1.0 - left / 15.0, 0.0, 1.0);
+    grow_weight_[i] = 1.0 + 2.0 * thin + soon;
+    total += grow_weight_[i];
+  }
+  const int workers = workers_->threads();
+  // Each worker spends up to budget_ms in parallel: its avatars' shares add up to its time.
+  const double per_weight_ms = budget_ms * workers / total;
+  const Clock::time_point end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
+  workers_->run(static_cast<int>(n), [&](int item, int) {
+    LookaheadAvatar& a = *players_[static_cast<size_t>(item)]->avatar;
+    GrowBudget budget;
+    if (config_.expansions_per_avatar > 0) {
+      budget = GrowBudget::expansions(config_.expansions_per_avatar);
+    } else {
+      const auto slice = std::chrono::duration<double, std::milli>(per_weight_ms * grow_weight_[static_cast<size_t>(item)]);
+      budget = GrowBudget::until(std::min(end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
+    }
+    grow_expansions_[static_cast<size_t>(item)] = a.grow(budget).expansions;
+  });
+  record.lookahead_ms = static_cast<float>(ms_between(now, Clock::now()));
+  int64_t expansions = 0;
+  int64_t nodes = 0;
+  int min_nodes = INT32_MAX;
+  for (size_t i = 0; i < n; ++i) {
+    expansions += grow_expansions_[i];
+    const int size = players_[i]->avatar->tree().num_nodes();
+    nodes += size;
+    min_nodes = std::min(min_nodes, size);
+  }
+  record.expansions = expansions;
+  record.tree_size_mean = static_cast<float>(static_cast<double>(nodes) / static_cast<double>(n));
+  record.tree_size_min = min_nodes;
+}
+
+void Server::check_contacts() {
+  // Independent of the reservations: do two avatars' bodies (this frame's volumes) overlap?
+  const size_t n = players_.size();
+  for (size_t i = 0; i < n; ++i) {
+    const PlaybackState& a = players_[i]->avatar->playback();
+    const BodyVolume va = place(library_.volumes(a.segment)[static_cast<size_t>(a.frame)], a.segment_start);
+    for (size_t j = i + 1; j < n; ++j) {
+      const PlaybackState& b = players_[j]->avatar->playback();
+      const BodyVolume vb = place(library_.volumes(b.segment)[static_cast<size_t>(b.frame)], b.segment_start);
+      const float r = va.radius_m + vb.radius_m;
+      const vec2 d = va.center_m - vb.center_m;
+      if (glm::dot(d, d) < r * r) {
+        ++counters_.avatar_contacts;
+        return;
+      }
+    }
+  }
+}
+
+}  // namespace foresight::server

@@ -1,0 +1,137 @@
+#pragma once
+// The authoritative server (docs/SERVER.md). One UDP socket, a fixed tick:
+//
+//   receive   drain the socket: handshakes, inputs, heartbeats, stats requests; every datagram
+//             verified first, bad ones dropped and counted by reason
+//   expire    drop sessions silent for session_timeout_s (their avatars go with them)
+//   advance   play each avatar's clip frames due this tick; at a segment end it takes its tree's
+//             best child that keeps clear of the other avatars' committed motion (reservations)
+//   look      grow every avatar's feasible motion tree within the tick's look-ahead budget,
+//             shared by need, on `threads` cores
+//   send      snapshots at snapshot_hz
+//
+// run_tick() does one tick and is what tests call (with a fake clock they stay deterministic in
+// expansion-budget mode); run() loops it at tick_hz until stop() is called.
+#include "lookahead/lookahead_avatar.hpp"
+#include "lookahead/reservations.hpp"
+#include "lookahead_workers.hpp"
+#include "protocol/cookie.hpp"
+#include "protocol/packet.hpp"
+#include "protocol/udp_socket.hpp"
+#include "server_config.hpp"
+#include "tick_stats.hpp"
+#include "world/collision_world.hpp"
+#include "world/scene.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace foresight::server {
+
+using Clock = std::chrono::steady_clock;
+
+/// Counters an operator (and the tests) read.
+struct ServerCounters {
+  uint64_t packets_in = 0;
+  uint64_t bytes_in = 0;
+  uint64_t packets_out = 0;
+  uint64_t bytes_out = 0;
+  uint64_t send_failures = 0;
+  uint64_t challenges_sent = 0;
+  uint64_t challenges_capped = 0;   ///< Connect requests ignored: over max_challenges_per_tick.
+  uint64_t sessions_opened = 0;
+  uint64_t sessions_timed_out = 0;
+  uint64_t sessions_closed = 0;     ///< Clean disconnects.
+  uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
+  uint64_t avatar_contacts = 0;     ///< Ticks with two avatars' bodies overlapping (must stay 0).
+  uint64_t fallbacks = 0;
+  protocol::DropCounters drops;
+};
+
+class Server {
+ public:
+  Server();
+  ~Server();
+  /// Loads the scene and the motion library, binds the socket. False with a reason.
+  bool start(const ServerConfig& config, std::string& error);
+  uint16_t port() const { return socket_.local_port(); }
+
+  /// One tick at time `now`.
+  void run_tick(Clock::time_point now);
+  /// Ticks at tick_hz until stop() (from any thread or a signal handler).
+  void run();
+  void stop() { stop_requested_.store(true); }
+
+  const ServerConfig& config() const { return config_; }
+  const MotionLibrary& library() const { return library_; }
+  const Scene& scene() const { return scene_; }
+  const ServerCounters& counters() const { return counters_; }
+  const TickStats& tick_stats() const { return stats_; }
+  int num_players() const;
+  uint32_t tick() const { return tick_; }
+
+  /// A player's avatar, for tests and tools (nullptr if none with that id).
+  const LookaheadAvatar* avatar(uint32_t avatar_id) const;
+  /// Avatar ids in play.
+  std::vector<uint32_t> avatar_ids() const;
+
+ private:
+  struct Player;
+
+  void receive(Clock::time_point now);
+  void handle(const protocol::Endpoint& from, const wire::Packet& packet, size_t bytes,
+              Clock::time_point now);
+  void on_connect_request(const protocol::Endpoint& from, const wire::ConnectRequest& m, size_t bytes,
+                          Clock::time_point now);
+  void on_connect_response(const protocol::Endpoint& from, const wire::ConnectResponse& m,
+                           Clock::time_point now);
+  void on_input(Player& p, const wire::Input& m);
+  void send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message);
+  void send_accept(const Player& p);
+  void send_stats(const Player& p);
+  void expire(Clock::time_point now);
+  void remove_player(size_t index);
+  void advance();
+  void grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record);
+  void send_snapshots(Clock::time_point now);
+  void check_contacts();
+  bool find_spawn(Placement& out) const;
+  Player* find_player(const protocol::Endpoint& from);
+  void send(std::span<const uint8_t> bytes, const protocol::Endpoint& to);
+
+  ServerConfig config_;
+  MotionLibrary library_;
+  Scene scene_;
+  CollisionWorld world_;
+  MotionTreeConfig tree_config_;
+  int spawn_segment_ = -1;
+
+  protocol::UdpSocket socket_;
+  protocol::CookieJar cookies_;
+  protocol::PacketWriter writer_;
+  std::vector<uint8_t> receive_buffer_;
+  std::vector<std::unique_ptr<Player>> players_;
+  Reservations reservations_;
+  std::unique_ptr<LookaheadWorkers> workers_;
+  std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
+  std::vector<double> grow_weight_;                 ///< Per player, reused.
+  std::vector<int64_t> grow_expansions_;            ///< Per player, this tick.
+  std::vector<Clock::time_point> grow_deadline_;    ///< Per worker.
+
+  Clock::time_point started_{};
+  uint32_t tick_ = 0;
+  uint32_t next_session_ = 1;
+  uint32_t next_avatar_ = 1;
+  double snapshot_accumulator_ = 0;
+  uint32_t snapshot_tick_ = 0;
+  int challenges_this_tick_ = 0;
+  ServerCounters counters_;
+  TickStats stats_;
+  std::atomic<bool> stop_requested_{false};
+};
+
+}  // namespace foresight::server

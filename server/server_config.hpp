@@ -1,0 +1,39 @@
+#pragma once
+// Every tunable of the server, with its default. The command line (main.cpp) sets them;
+// docs/SERVER.md explains each.
+#include "library/library_source.hpp"
+#include "lookahead/strategy.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace foresight::server {
+
+struct ServerConfig {
+  std::string scene = "maze";      ///< data/scenes/<scene>.json
+  std::string bind_address = "0.0.0.0";
+  uint16_t port = 7777;            ///< 0: any free port (tests).
+  int tick_hz = 30;
+  int snapshot_hz = 20;
+  int max_players = 512;
+  double session_timeout_s = 5.0;  ///< A client silent this long is dropped, its avatar removed.
+  /// Look-ahead budget per tick: what the tick period leaves after the rest of the tick, minus the
+  /// safety margin, at most this much (ms of wall-clock per tick, across all threads).
+  double lookahead_budget_ms = 20.0;
+  double tick_safety_margin_ms = 4.0;
+  /// Deterministic mode (tests, experiments): > 0 grows every tree by exactly this many
+  /// expansions per tick instead of a time budget; 0 uses time.
+  int64_t expansions_per_avatar = 0;
+  int threads = 1;                 ///< Look-ahead worker threads (1: on the tick thread).
+  Strategy strategy = Strategy::kCommand;
+  int tree_max_nodes = 2048;       ///< Per avatar (64 B per node).
+  int tree_max_depth = 8;
+  /// Per session: more packets than this per second are dropped (counted); input commands come
+  /// at most at the client's frame rate.
+  int max_packets_per_s = 120;
+  /// Challenges answered per tick at most (a connect flood cannot eat the tick).
+  int max_challenges_per_tick = 256;
+  MotionSource motions;            ///< Default library, or --motions DIR.
+};
+
+}  // namespace foresight::server

@@ -1,0 +1,53 @@
+#include "tick_stats.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight::server {
+
+void TickStats::record(const TickRecord& r, bool overrun) {
+  ring_[static_cast<size_t>(next_)] = r;
+  next_ = (next_ + 1) % kWindow;
+  count_ = std::min(count_ + 1, kWindow);
+  ++ticks_;
+  if (overrun) ++overruns_;
+}
+
+float TickStats::tick_ms_percentile(double p) const {
+  if (count_ == 0) return 0.0f;
+  std::array<float, kWindow> v;
+  for (int i = 0; i < count_; ++i) v[static_cast<size_t>(i)] = ring_[static_cast<size_t>(i)].tick_ms;
+  const int k = std::clamp(static_cast<int>(std::ceil(p / 100.0 * count_)) - 1, 0, count_ - 1);
+  std::nth_element(v.begin(), v.begin() + k, v.begin() + count_);
+  return v[static_cast<size_t>(k)];
+}
+
+float TickStats::tick_ms_max() const {
+  float m = 0;
+  for (int i = 0; i < count_; ++i) m = std::max(m, ring_[static_cast<size_t>(i)].tick_ms);
+  return m;
+}
+
+TickRecord TickStats::mean() const {
+  TickRecord m;
+  if (count_ == 0) return m;
+  double tick = 0, budget = 0, look = 0, exp = 0, size = 0, players = 0;
+  int size_min = 0;
+  for (int i = 0; i < count_; ++i) {
+    const TickRecord& r = ring_[static_cast<size_t>(i)];
+    tick += r.tick_ms, budget += r.budget_ms, look += r.lookahead_ms;
+    exp += static_cast<double>(r.expansions), size += r.tree_size_mean, players += r.players;
+    size_min = i == 0 ? r.tree_size_min : std::min(size_min, r.tree_size_min);
+  }
+  const double n = count_;
+  m.tick_ms = static_cast<float>(tick / n);
+  m.budget_ms = static_cast<float>(budget / n);
+  m.lookahead_ms = static_cast<float>(look / n);
+  m.expansions = static_cast<int64_t>(exp / n);
+  m.tree_size_mean = static_cast<float>(size / n);
+  m.tree_size_min = size_min;
+  m.players = static_cast<int>(players / n);
+  return m;
+}
+
+}  // namespace foresight::server

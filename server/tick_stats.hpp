@@ -1,0 +1,40 @@
+#pragma once
+// Per-tick figures the server keeps (docs/SERVER.md): a window of recent ticks for percentiles,
+// and totals. Fixed-size ring: recording a tick never allocates.
+#include <array>
+#include <cstdint>
+
+namespace foresight::server {
+
+struct TickRecord {
+  float tick_ms = 0;        ///< Work done in the tick (not the sleep).
+  float budget_ms = 0;      ///< Look-ahead budget granted.
+  float lookahead_ms = 0;   ///< Look-ahead time spent (tick thread wall-clock).
+  int64_t expansions = 0;
+  int tree_size_min = 0;
+  float tree_size_mean = 0;
+  int players = 0;
+};
+
+class TickStats {
+ public:
+  static constexpr int kWindow = 1024;  ///< About 34 s at 30 Hz.
+  void record(const TickRecord& r, bool overrun);
+  /// Percentile (0..100) of tick_ms over the window; 0 when empty.
+  float tick_ms_percentile(double p) const;
+  float tick_ms_max() const;
+  /// Means over the window.
+  TickRecord mean() const;
+  const TickRecord& last() const { return ring_[(next_ + kWindow - 1) % kWindow]; }
+  uint64_t ticks() const { return ticks_; }
+  uint64_t overruns() const { return overruns_; }
+
+ private:
+  std::array<TickRecord, kWindow> ring_{};
+  int next_ = 0;
+  int count_ = 0;
+  uint64_t ticks_ = 0;
+  uint64_t overruns_ = 0;
+};
+
+}  // namespace foresight::server

@@ -1,0 +1,32 @@
+#pragma once
+// The motion-library options every binary takes (--motions DIR, --threshold, --bvh-units,
+// --bvh-up), declared once. Header-only: only executables include it (they link CLI11).
+#include "library/library_source.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <map>
+#include <string>
+
+namespace foresight {
+
+/// Adds the options to `app`; after parsing, `source` describes the library to load.
+inline void add_motion_source_options(CLI::App& app, MotionSource& source) {
+  app.add_option("--motions", source.motions_dir,
+                 "Folder of BVH clips to use instead of the built-in default library")
+      ->check(CLI::ExistingDirectory);
+  app.add_option("--threshold", source.graph.threshold_rms_m,
+                 "Automatic graph: max RMS point distance of a transition, metres");
+  static const std::map<std::string, LengthUnit> units{{"auto", LengthUnit::kAuto},
+                                                       {"m", LengthUnit::kMetres},
+                                                       {"cm", LengthUnit::kCentimetres},
+                                                       {"in", LengthUnit::kInches}};
+  static const std::map<std::string, UpAxis> ups{{"auto", UpAxis::kAuto}, {"y", UpAxis::kYUp},
+                                                 {"z", UpAxis::kZUp}, {"x", UpAxis::kXUp}};
+  app.add_option("--bvh-units", source.import.unit, "Length unit of the BVH files (default: detected)")
+      ->transform(CLI::CheckedTransformer(units, CLI::ignore_case));
+  app.add_option("--bvh-up", source.import.up, "Up axis of the BVH files (default: detected)")
+      ->transform(CLI::CheckedTransformer(ups, CLI::ignore_case));
+}
+
+}  // namespace foresight

@@ -1,0 +1,68 @@
+#pragma once
+// Avatars never walk through each other: every avatar's committed motion (the rest of the segment
+// it is playing) is reserved ground, and at each decision an avatar may only take a segment whose
+// every frame keeps clear of the others' reservations (docs/SERVER.md, "Avatars never overlap").
+//
+// Why this is enough: when an avatar commits to a segment, that segment is clear of every other
+// avatar's remaining committed motion, whatever the timing (the check ignores time, so it is
+// conservative). Each avatar's committed motion therefore stays clear of every other's, and since
+// an avatar's body is always somewhere on its own committed motion, no two bodies overlap. A
+// blocked avatar idles where it stands (inside its own reservation) or holds its pose.
+// Reservations are rebuilt every tick and extended as avatars commit during the tick.
+//
+// Memory: a fixed grid over the scene with per-cell index lists whose capacity is kept between
+// ticks, so a tick allocates nothing once warm.
+#include "library/motion_library.hpp"
+#include "lookahead/motion_tree.hpp"
+#include "world/scene.hpp"
+
+#include <vector>
+
+namespace foresight {
+
+class Reservations {
+ public:
+  /// Covers `bounds` with cells of `cell_m`; `clearance_m` is added between two bodies' discs.
+  void configure(const GroundRect& bounds, float cell_m = 1.0f, float clearance_m = 0.05f);
+  void clear();
+  /// Reserves frames [from_frame, end] of `segment` placed at `start` for avatar `owner`.
+  void add(int owner, const MotionLibrary& library, int segment, int from_frame, const Placement& start);
+  /// True when some frame of `segment` placed at `start` overlaps a disc reserved by anyone but
+  /// `self`.
+  bool blocks(int self, const MotionLibrary& library, int segment, const Placement& start) const;
+  size_t num_discs() const { return discs_.size(); }
+
+ private:
+  struct Disc {
+    vec2 center_m;
+    float radius_m;
+    int owner;
+  };
+  int cell_of(vec2 p) const;
+
+  vec2 origin_m_{0.0f};
+  float cell_m_ = 1.0f;
+  float clearance_m_ = 0.05f;
+  int count_x_ = 1, count_z_ = 1;
+  float max_radius_m_ = 0.0f;
+  std::vector<Disc> discs_;
+  std::vector<std::vector<int>> cells_;  ///< Disc indices per cell (by disc centre).
+  std::vector<int> touched_;             ///< Cells with entries, for clear().
+};
+
+/// Reservations seen by one avatar, as a veto for LookaheadAvatar::step().
+class ReservationVeto final : public ChildVeto {
+ public:
+  ReservationVeto(const Reservations& r, const MotionLibrary& library, int self)
+      : r_(r), library_(library), self_(self) {}
+  bool blocks(int segment, const Placement& start) const override {
+    return r_.blocks(self_, library_, segment, start);
+  }
+
+ private:
+  const Reservations& r_;
+  const MotionLibrary& library_;
+  int self_;
+};
+
+}  // namespace foresight

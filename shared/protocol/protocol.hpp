@@ -1,0 +1,32 @@
+#pragma once
+// Protocol constants shared by server, client and bots (schema/foresight.fbs, docs/PROTOCOL.md).
+#include <cstddef>
+#include <cstdint>
+
+namespace foresight::protocol {
+
+/// Bumped whenever a peer of the previous version could misread a message.
+inline constexpr uint32_t kProtocolVersion = 1;
+
+/// Largest datagram anyone sends: under the common 1280-byte IPv6 minimum MTU after headers, so
+/// nothing is ever fragmented.
+inline constexpr size_t kMaxDatagramBytes = 1200;
+/// A ConnectRequest must be at least this big (padding): the Challenge it triggers is smaller,
+/// so a spoofed source address cannot use the server as an amplifier.
+inline constexpr size_t kMinConnectRequestBytes = 160;
+/// Commands repeated in every Input packet: a loss of up to this many packets in a row loses
+/// no command.
+inline constexpr int kInputRedundancy = 8;
+/// Verifier limits for received buffers (the schema nests 3 tables deep at most).
+inline constexpr int kVerifierMaxDepth = 8;
+inline constexpr int kVerifierMaxTables = 64;
+
+/// AvatarState::flags bits.
+enum AvatarFlags : uint8_t {
+  kAvatarNone = 0,
+  kAvatarYours = 1u << 0,     ///< The receiving client's own avatar.
+  kAvatarFallback = 1u << 1,  ///< Stopped: nothing feasible ahead (idle fallback).
+  kAvatarNpc = 1u << 2,       ///< Server-controlled.
+};
+
+}  // namespace foresight::protocol

@@ -1,0 +1,109 @@
+#pragma once
+// A bare client for server tests: a real UDP socket on loopback that sends hand-built packets
+// (valid and hostile) and reads the server's replies, with the server ticked in between.
+#include "protocol/packet.hpp"
+#include "protocol/quantize.hpp"
+#include "protocol/udp_socket.hpp"
+#include "server.hpp"
+
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <vector>
+
+namespace foresight::test {
+
+class RawClient {
+ public:
+  explicit RawClient(uint16_t server_port) {
+    std::string error;
+    EXPECT_TRUE(socket_.open("127.0.0.1", 0, error)) << error;
+    server_ = protocol::Endpoint(asio::ip::make_address("127.0.0.1"), server_port);
+  }
+  void send(std::span<const uint8_t> bytes) { socket_.send(bytes, server_); }
+  void send_raw(const std::vector<uint8_t>& bytes) { socket_.send(bytes, server_); }
+
+  /// Every datagram waiting (copied, so packets stay valid).
+  std::vector<std::vector<uint8_t>> receive_all() {
+    std::vector<std::vector<uint8_t>> out;
+    std::vector<uint8_t> buffer(protocol::kMaxDatagramBytes + 1);
+    protocol::Endpoint from;
+    for (;;) {
+      const ptrdiff_t n = socket_.receive(buffer, from);
+      if (n < 0) break;
+      out.emplace_back(buffer.begin(), buffer.begin() + n);
+    }
+    return out;
+  }
+  /// The first waiting message of type `type`, as a copy of its datagram.
+  std::optional<std::vector<uint8_t>> receive(wire::Message type) {
+    for (auto& d : receive_all()) {
+      protocol::DropReason reason;
+      const wire::Packet* p = protocol::packet_read(d, reason);
+      if (p != nullptr && p->message_type() == type) return d;
+    }
+    return std::nullopt;
+  }
+
+  /// Runs the handshake against `server` (ticked at `now`, advancing 1 ms per tick); returns the
+  /// Accept's session and avatar, or the refusal's bytes via `refuse`.
+  bool connect(server::Server& s, server::Clock::time_point& now, uint64_t library_hash,
+               std::vector<uint8_t>* refuse = nullptr) {
+    send(protocol::write_connect_request(writer_, library_hash, "test"));
+    std::optional<std::vector<uint8_t>> challenge;
+    for (int i = 0; i < 50 && !challenge; ++i) {
+      s.run_tick(now += std::chrono::milliseconds(1));
+      challenge = receive(wire::Message::Challenge);
+    }
+    if (!challenge) return false;
+    protocol::DropReason reason;
+    const auto* cookie = protocol::packet_read(*challenge, reason)->message_as_Challenge()->cookie();
+    send(protocol::write_connect_response(writer_, library_hash, {cookie->data(), cookie->size()}, "test"));
+    for (int i = 0; i < 50; ++i) {
+      s.run_tick(now += std::chrono::milliseconds(1));
+      for (auto& d : receive_all()) {
+        const wire::Packet* p = protocol::packet_read(d, reason);
+        if (p == nullptr) continue;
+        if (const auto* a = p->message_as_Accept()) {
+          session = a->session();
+          avatar = a->avatar();
+          return true;
+        }
+        if (p->message_as_Refuse() != nullptr) {
+          if (refuse != nullptr) *refuse = d;
+          return false;
+        }
+      }
+    }
+    return false;
+  }
+
+  /// An Input holding one command: camera-space direction `dir`, camera yaw 0.
+  void send_input(vec2 dir, uint32_t sequence) {
+    auto& fbb = writer_.begin();
+    const wire::InputCommand cmd(sequence, protocol::quantize_angle(0.0f), protocol::quantize_unit(dir.x),
+                                 protocol::quantize_unit(dir.y), wire::Buttons::NONE);
+    const auto commands = fbb.CreateVectorOfStructs(&cmd, 1);
+    send(writer_.finish(wire::CreateInput(fbb, session, 0, sequence, commands)));
+  }
+
+  uint32_t session = 0;
+  uint32_t avatar = 0;
+  protocol::PacketWriter writer_;
+
+ private:
+  protocol::UdpSocket socket_;
+  protocol::Endpoint server_;
+};
+
+/// A server on a free loopback port, deterministic growth (expansions per tick).
+inline server::ServerConfig test_server_config(const std::string& scene) {
+  server::ServerConfig c;
+  c.scene = scene;
+  c.bind_address = "127.0.0.1";
+  c.port = 0;
+  c.expansions_per_avatar = 200;
+  return c;
+}
+
+}  // namespace foresight::test

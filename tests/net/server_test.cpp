@@ -1,0 +1,228 @@
+// The server over real UDP on loopback, ticked by the test with its own clock (deterministic
+// growth: a fixed number of expansions per avatar per tick).
+#include "raw_client.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace foresight {
+namespace {
+
+using test::RawClient;
+using namespace std::chrono_literals;
+
+struct Running {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  explicit Running(const std::string& scene = "maze") {
+    std::string error;
+    EXPECT_TRUE(server.start(test::test_server_config(scene), error)) << error;
+  }
+  void ticks(int n) {
+    for (int i = 0; i < n; ++i) server.run_tick(now += 33ms);
+  }
+};
+
+TEST(Server, HandshakeGivesASessionAndAnAvatarInSnapshots) {
+  Running r;
+  RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  EXPECT_EQ(r.server.num_players(), 1);
+  ASSERT_NE(r.server.avatar(c.avatar), nullptr);
+  r.ticks(3);
+  auto snap = c.receive(wire::Message::Snapshot);
+  ASSERT_TRUE(snap.has_value());
+  protocol::DropReason reason;
+  const wire::Snapshot* s = protocol::packet_read(*snap, reason)->message_as_Snapshot();
+  ASSERT_NE(s->avatars(), nullptr);
+  ASSERT_EQ(s->avatars()->size(), 1u);
+  EXPECT_EQ(s->avatars()->Get(0)->id(), c.avatar);
+  EXPECT_TRUE(s->avatars()->Get(0)->flags() & protocol::kAvatarYours);
+}
+
+TEST(Server, InputMovesTheAvatarAndSnapshotsFollowIt) {
+  Running r;
+  RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  const vec2 start = r.server.avatar(c.avatar)->root().pos_m;
+  uint32_t seq = 1;
+  for (int i = 0; i < 90; ++i) {  // 3 s holding "forward" (camera yaw 0: world +Z)
+    c.send_input(vec2(0.0f, 1.0f), seq++);
+    r.ticks(1);
+  }
+  const Placement root = r.server.avatar(c.avatar)->root();
+  EXPECT_GT(glm::length(root.pos_m - start), 1.5f) << "the avatar should have walked";
+  // The newest snapshot rebuilds the server's root to within the quantisation.
+  std::optional<std::vector<uint8_t>> last;
+  for (auto& d : c.receive_all()) {
+    protocol::DropReason reason;
+    const wire::Packet* p = protocol::packet_read(d, reason);
+    if (p != nullptr && p->message_type() == wire::Message::Snapshot) last = d;
+  }
+  ASSERT_TRUE(last.has_value());
+  protocol::DropReason reason;
+  const wire::Snapshot* s = protocol::packet_read(*last, reason)->message_as_Snapshot();
+  EXPECT_EQ(s->ack_input(), seq - 1);
+  const wire::AvatarState* a = s->avatars()->Get(0);
+  const Placement seg_start{vec2(protocol::dequantize_mm(a->start_x_mm()), protocol::dequantize_mm(a->start_z_mm())),
+                            protocol::dequantize_angle(a->start_heading())};
+  const Placement rebuilt = motion_library_root_at(r.server.library(), a->segment(), a->frame(), seg_start);
+  EXPECT_LT(glm::length(rebuilt.pos_m - root.pos_m), 0.01f);
+}
+
+TEST(Server, AClientWithAnotherLibraryIsRefusedWithAClearMessage) {
+  Running r;
+  RawClient c(r.server.port());
+  std::vector<uint8_t> refuse;
+  EXPECT_FALSE(c.connect(r.server, r.now, r.server.library().content_hash ^ 1u, &refuse));
+  ASSERT_FALSE(refuse.empty());
+  protocol::DropReason reason;
+  const wire::Refuse* m = protocol::packet_read(refuse, reason)->message_as_Refuse();
+  EXPECT_EQ(m->reason(), wire::RefuseReason::Library);
+  EXPECT_NE(m->message()->str().find("motion library differs"), std::string::npos) << m->message()->str();
+  EXPECT_EQ(m->server_library_hash(), r.server.library().content_hash);
+  EXPECT_EQ(r.server.num_players(), 0);
+}
+
+TEST(Server, GarbageAndTruncatedDatagramsAreDroppedAndCountedWhileAPlayerPlaysOn) {
+  Running r;
+  RawClient player(r.server.port());
+  ASSERT_TRUE(player.connect(r.server, r.now, r.server.library().content_hash));
+  RawClient attacker(r.server.port());
+  std::mt19937 rng(7);
+  // A valid Input, then the same bytes truncated at every length, then random bytes.
+  protocol::PacketWriter w;
+  auto& fbb = w.begin();
+  const wire::InputCommand cmd(1, 0, 0, 127, wire::Buttons::NONE);
+  const auto bytes = w.finish(wire::CreateInput(fbb, player.session, 0, 0, fbb.CreateVectorOfStructs(&cmd, 1)));
+  const std::vector<uint8_t> valid(bytes.begin(), bytes.end());
+  uint64_t sent = 0;
+  for (size_t n = 0; n < valid.size(); ++n, ++sent) attacker.send_raw({valid.begin(), valid.begin() + static_cast<ptrdiff_t>(n)});
+  for (int i = 0; i < 200; ++i, ++sent) {
+    std::vector<uint8_t> junk(1 + rng() % 300);
+    for (auto& b : junk) b = static_cast<uint8_t>(rng());
+    if (i % 2 == 0 && junk.size() >= 8) std::memcpy(junk.data() + 4, "FSG1", 4);  // past the identifier
+    attacker.send_raw(junk);
+  }
+  attacker.send_raw(std::vector<uint8_t>(4000, 0xAB));  // oversized
+  ++sent;
+  attacker.send_raw(valid);  // a well-formed Input from the wrong address: not its session
+  ++sent;
+  uint32_t seq = 1;
+  for (int i = 0; i < 60; ++i) {
+    player.send_input(vec2(0.0f, 1.0f), seq++);
+    r.ticks(1);
+  }
+  const auto& drops = r.server.counters().drops;
+  EXPECT_EQ(drops.total(), sent) << "every hostile datagram is dropped and counted";
+  EXPECT_GT(drops.by_reason[static_cast<size_t>(protocol::DropReason::kMalformed)] +
+                drops.by_reason[static_cast<size_t>(protocol::DropReason::kBadIdentifier)],
+            0u);
+  EXPECT_EQ(drops.by_reason[static_cast<size_t>(protocol::DropReason::kTooLarge)], 1u);
+  EXPECT_EQ(drops.by_reason[static_cast<size_t>(protocol::DropReason::kUnexpected)], 1u);
+  EXPECT_EQ(r.server.num_players(), 1);
+  ASSERT_NE(r.server.avatar(player.avatar), nullptr);
+  EXPECT_TRUE(player.receive(wire::Message::Snapshot).has_value());
+}
+
+TEST(Server, UnpaddedConnectsAndForgedCookiesGetNothing) {
+  Running r;
+  RawClient c(r.server.port());
+  // Unpadded request: could amplify, dropped without a reply.
+  protocol::PacketWriter w;
+  auto& fbb = w.begin();
+  c.send(w.finish(wire::CreateConnectRequest(fbb, protocol::kProtocolVersion, r.server.library().content_hash)));
+  r.ticks(2);
+  EXPECT_TRUE(c.receive_all().empty());
+  EXPECT_EQ(r.server.counters().drops.by_reason[static_cast<size_t>(protocol::DropReason::kTooSmall)], 1u);
+  // A made-up cookie: refused, no session.
+  const uint8_t forged[protocol::kCookieBytes] = {1, 2, 3, 4, 5, 6, 7, 8};
+  c.send(protocol::write_connect_response(w, r.server.library().content_hash, forged, "x"));
+  r.ticks(2);
+  const auto refuse = c.receive(wire::Message::Refuse);
+  ASSERT_TRUE(refuse.has_value());
+  protocol::DropReason reason;
+  EXPECT_EQ(protocol::packet_read(*refuse, reason)->message_as_Refuse()->reason(), wire::RefuseReason::BadCookie);
+  EXPECT_EQ(r.server.num_players(), 0);
+}
+
+TEST(Server, ASilentClientIsTimedOutAndItsAvatarRemoved) {
+  Running r;
+  RawClient stays(r.server.port()), vanishes(r.server.port());
+  ASSERT_TRUE(stays.connect(r.server, r.now, r.server.library().content_hash));
+  ASSERT_TRUE(vanishes.connect(r.server, r.now, r.server.library().content_hash));
+  EXPECT_EQ(r.server.num_players(), 2);
+  uint32_t seq = 1;
+  for (int i = 0; i < 200; ++i) {  // 6.6 s: only one keeps talking
+    stays.send_input(vec2(0.0f), seq++);
+    r.ticks(1);
+  }
+  EXPECT_EQ(r.server.num_players(), 1);
+  EXPECT_EQ(r.server.avatar(vanishes.avatar), nullptr);
+  EXPECT_NE(r.server.avatar(stays.avatar), nullptr);
+  EXPECT_EQ(r.server.counters().sessions_timed_out, 1u);
+}
+
+TEST(Server, ADisconnectEndsTheSessionAtOnce) {
+  Running r;
+  RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  c.send(protocol::write_disconnect(c.writer_, c.session));
+  r.ticks(1);
+  EXPECT_EQ(r.server.num_players(), 0);
+  EXPECT_EQ(r.server.counters().sessions_closed, 1u);
+}
+
+TEST(Server, TheTickIsDeterministicGivenTheSameInputs) {
+  // Two servers, the same inputs at the same ticks, expansion budgets: the same avatars, bit for bit.
+  std::vector<PlaybackState> end[2];
+  for (int run = 0; run < 2; ++run) {
+    Running r;
+    RawClient a(r.server.port()), b(r.server.port());
+    ASSERT_TRUE(a.connect(r.server, r.now, r.server.library().content_hash));
+    ASSERT_TRUE(b.connect(r.server, r.now, r.server.library().content_hash));
+    uint32_t seq = 1;
+    for (int i = 0; i < 150; ++i) {
+      const float t = static_cast<float>(i) / 30.0f;
+      a.send_input(vec2(std::sin(t), std::cos(t)), seq);
+      b.send_input(vec2(-std::sin(0.7f * t), std::cos(0.7f * t)), seq);
+      ++seq;
+      r.ticks(1);
+    }
+    end[run] = {r.server.avatar(a.avatar)->playback(), r.server.avatar(b.avatar)->playback()};
+  }
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(end[0][i].segment, end[1][i].segment);
+    EXPECT_EQ(end[0][i].frame, end[1][i].frame);
+    EXPECT_EQ(end[0][i].segment_start.pos_m, end[1][i].segment_start.pos_m);
+    EXPECT_EQ(end[0][i].segment_start.heading_rad, end[1][i].segment_start.heading_rad);
+  }
+}
+
+TEST(Server, AvatarsWalkingAtEachOtherNeverOverlap) {
+  // Players spawn side by side and are all told to walk to the same point: reservations keep
+  // their bodies apart (the server's own contact check counts any overlap).
+  Running r("arena");
+  std::vector<std::unique_ptr<RawClient>> clients;
+  for (int i = 0; i < 6; ++i) {
+    clients.push_back(std::make_unique<RawClient>(r.server.port()));
+    ASSERT_TRUE(clients.back()->connect(r.server, r.now, r.server.library().content_hash));
+  }
+  uint32_t seq = 1;
+  for (int i = 0; i < 300; ++i) {
+    for (auto& c : clients) {
+      const Placement at = r.server.avatar(c->avatar)->root();
+      const vec2 to = -at.pos_m;  // towards the centre; camera yaw 0: camera x = -world x
+      const float len = glm::length(to);
+      c->send_input(len > 0.3f ? vec2(-to.x, to.y) / len : vec2(0.0f), seq);
+    }
+    ++seq;
+    r.ticks(1);
+  }
+  EXPECT_EQ(r.server.counters().avatar_contacts, 0u);
+  EXPECT_EQ(r.server.num_players(), 6);
+}
+
+}  // namespace
+}  // namespace foresight
