@@ -36,7 +36,10 @@ int main(int argc, char** argv) {
   app.add_option("--expansions", config.expansions_per_avatar,
                  "Deterministic mode: expansions per avatar per tick instead of a time budget (0: time)")
       ->check(CLI::Range(int64_t{0}, int64_t{10000000}))->capture_default_str();
-  app.add_option("--threads", config.threads, "Look-ahead threads")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--threads", config.threads, "Look-ahead threads, the tick thread included (0: one per core)")
+      ->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--status-every-s", config.status_every_s, "Log a status line this often (0: never)")
+      ->check(CLI::Range(0.0, 86400.0))->capture_default_str();
   std::string strategy = "command";
   app.add_option("--strategy", strategy, "Exploration strategy: " + strategy_names())->capture_default_str();
   app.add_option("--tree-nodes", config.tree_max_nodes, "Tree node cap per avatar")->check(CLI::Range(16, 1 << 20))->capture_default_str();

@@ -51,12 +51,13 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   config_ = config;
   config_.tick_hz = std::clamp(config_.tick_hz, 1, 240);
   config_.snapshot_hz = std::clamp(config_.snapshot_hz, 1, config_.tick_hz);
+  if (config_.threads <= 0) config_.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   config_.threads = std::clamp(config_.threads, 1, 64);
   if (!scene_world_load(config_.scene, scene_, world_, error)) return false;
   if (!motion_library_load(config_.motions, library_, error)) return false;
-  spawn_segment_ = find_fallback_segment(library_);
+  spawn_segment_ = find_spawn_segment(library_);
   if (spawn_segment_ < 0) {
-    error = "motion library '" + library_.name + "' has no idle segment to spawn avatars in";
+    error = "motion library '" + library_.name + "' has no segment to spawn avatars in";
     return false;
   }
   tree_config_.strategy = config_.strategy;
@@ -119,6 +120,22 @@ void Server::run_tick(Clock::time_point now) {
   record.players = num_players();
   record.tick_ms = static_cast<float>(ms_between(tick_start, Clock::now()));
   stats_.record(record, record.tick_ms > 1000.0f / static_cast<float>(config_.tick_hz));
+  const auto status_ticks = static_cast<uint32_t>(config_.status_every_s * config_.tick_hz);
+  if (status_ticks > 0 && tick_ % status_ticks == 0) log_status();
+}
+
+void Server::log_status() const {
+  const TickRecord mean = stats_.mean();
+  std::fprintf(stderr,
+               "foresight-server: tick %u, %d players; tick ms p50 %.2f p99 %.2f, %llu overruns; look-ahead "
+               "%.1f of %.1f ms, %lld expansions/tick, tree size mean %.0f min %d; %llu packets in, %llu "
+               "dropped; %llu avatar contacts\n",
+               tick_, num_players(), stats_.tick_ms_percentile(50), stats_.tick_ms_percentile(99),
+               static_cast<unsigned long long>(stats_.overruns()), mean.lookahead_ms, mean.budget_ms,
+               static_cast<long long>(mean.expansions), mean.tree_size_mean, mean.tree_size_min,
+               static_cast<unsigned long long>(counters_.packets_in),
+               static_cast<unsigned long long>(counters_.drops.total()),
+               static_cast<unsigned long long>(counters_.avatar_contacts));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -99,6 +99,7 @@ class Server {
   void grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record);
   void send_snapshots(Clock::time_point now);
   void check_contacts();
+  void log_status() const;
   bool find_spawn(Placement& out) const;
   Player* find_player(const protocol::Endpoint& from);
   void send(std::span<const uint8_t> bytes, const protocol::Endpoint& to);

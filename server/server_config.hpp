@@ -24,7 +24,8 @@ struct ServerConfig {
   /// Deterministic mode (tests, experiments): > 0 grows every tree by exactly this many
   /// expansions per tick instead of a time budget; 0 uses time.
   int64_t expansions_per_avatar = 0;
-  int threads = 1;                 ///< Look-ahead worker threads (1: on the tick thread).
+  int threads = 0;                 ///< Look-ahead threads, the tick thread included (0: one per core).
+  double status_every_s = 10.0;    ///< A status line in the log this often (0: never).
   Strategy strategy = Strategy::kCommand;
   int tree_max_nodes = 2048;       ///< Per avatar (64 B per node).
   int tree_max_depth = 8;

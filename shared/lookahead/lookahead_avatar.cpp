@@ -14,6 +14,20 @@ int find_fallback_segment(const MotionLibrary& library) {
   return best;
 }
 
+int find_spawn_segment(const MotionLibrary& library) {
+  const int idle = find_fallback_segment(library);
+  if (idle >= 0) return idle;
+  int best = -1;
+  float best_speed = 0.0f;
+  for (int s = 0; s < library.graph.num_segments(); ++s) {
+    const Segment& seg = library.graph.segments[s];
+    if ((seg.tags & kTagFight) || seg.num_frames() <= 0) continue;
+    const float speed = glm::length(library.segment_motion[s].end.pos_m) / static_cast<float>(seg.num_frames());
+    if (best < 0 || speed < best_speed) best = s, best_speed = speed;
+  }
+  return best;
+}
+
 LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world,
                                  MotionTreeConfig config, int start_segment, const Placement& start)
     : library_(library),

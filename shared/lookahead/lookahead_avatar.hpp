@@ -57,4 +57,8 @@ class LookaheadAvatar {
 /// The idle segment a library falls back to: tagged idle (not crouch, not fight), moving least.
 int find_fallback_segment(const MotionLibrary& library);
 
+/// Where a new avatar starts: the fallback idle, or in a library without one (a folder of
+/// locomotion captures) the non-fight segment with the slowest root. -1 for an empty library.
+int find_spawn_segment(const MotionLibrary& library);
+
 }  // namespace foresight

@@ -103,6 +103,8 @@ inline server::ServerConfig test_server_config(const std::string& scene) {
   c.bind_address = "127.0.0.1";
   c.port = 0;
   c.expansions_per_avatar = 200;
+  c.threads = 1;
+  c.status_every_s = 0;
   return c;
 }
 

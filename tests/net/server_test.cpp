@@ -1,6 +1,7 @@
 // The server over real UDP on loopback, ticked by the test with its own clock (deterministic
 // growth: a fixed number of expansions per avatar per tick).
 #include "raw_client.hpp"
+#include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -222,6 +223,31 @@ TEST(Server, AvatarsWalkingAtEachOtherNeverOverlap) {
   }
   EXPECT_EQ(r.server.counters().avatar_contacts, 0u);
   EXPECT_EQ(r.server.num_players(), 6);
+}
+
+TEST(Server, RunsOnAFolderOfRealMotionCaptureClips) {
+  FORESIGHT_REQUIRE_MOCAP();
+  server::ServerConfig config = test::test_server_config("arena");
+  config.motions.motions_dir = test::mocap_dir() / "locomotion";
+  server::Server s;
+  std::string error;
+  ASSERT_TRUE(s.start(config, error)) << error;
+  EXPECT_NE(s.library().content_hash, motion_library_default().content_hash);
+  auto now = server::Clock::now();
+  RawClient c(s.port());
+  ASSERT_TRUE(c.connect(s, now, s.library().content_hash));
+  const vec2 start = s.avatar(c.avatar)->root().pos_m;
+  uint32_t seq = 1;
+  for (int i = 0; i < 150; ++i) {
+    c.send_input(vec2(0.0f, 1.0f), seq++);
+    s.run_tick(now += 33ms);
+  }
+  EXPECT_GT(glm::length(s.avatar(c.avatar)->root().pos_m - start), 1.0f) << "real clips walk too";
+  // The built-in library's client is refused by this server.
+  RawClient other(s.port());
+  std::vector<uint8_t> refuse;
+  EXPECT_FALSE(other.connect(s, now, motion_library_default().content_hash, &refuse));
+  EXPECT_FALSE(refuse.empty());
 }
 
 }  // namespace
