@@ -16,9 +16,11 @@ using namespace std::chrono_literals;
 struct Running {
   server::Server server;
   server::Clock::time_point now = server::Clock::now();
-  explicit Running(const std::string& scene = "maze") {
+  explicit Running(const std::string& scene = "maze", int threads = 1) {
+    server::ServerConfig config = test::test_server_config(scene);
+    config.threads = threads;
     std::string error;
-    EXPECT_TRUE(server.start(test::test_server_config(scene), error)) << error;
+    EXPECT_TRUE(server.start(config, error)) << error;
   }
   void ticks(int n) {
     for (int i = 0; i < n; ++i) server.run_tick(now += 33ms);
@@ -176,10 +178,11 @@ TEST(Server, ADisconnectEndsTheSessionAtOnce) {
 }
 
 TEST(Server, TheTickIsDeterministicGivenTheSameInputs) {
-  // Two servers, the same inputs at the same ticks, expansion budgets: the same avatars, bit for bit.
+  // Two servers (one and two look-ahead threads), the same inputs at the same ticks, expansion
+  // budgets: the same avatars, bit for bit.
   std::vector<PlaybackState> end[2];
   for (int run = 0; run < 2; ++run) {
-    Running r;
+    Running r("maze", 1 + run);
     RawClient a(r.server.port()), b(r.server.port());
     ASSERT_TRUE(a.connect(r.server, r.now, r.server.library().content_hash));
     ASSERT_TRUE(b.connect(r.server, r.now, r.server.library().content_hash));
