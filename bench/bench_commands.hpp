@@ -39,6 +39,12 @@ struct LookaheadBenchOptions {
 };
 int bench_lookahead(const LookaheadBenchOptions& options);
 
+struct LoadReportOptions {
+  std::vector<std::string> inputs;  ///< Files whose last JSON line is foresight-bots --json output.
+  std::string out_dir = "out/loadtest";
+};
+int bench_load_report(const LoadReportOptions& options);
+
 /// Median of a list of samples (the list is reordered).
 double median(std::vector<double>& samples);
 

@@ -3,6 +3,7 @@
 //   foresight-bench bvh [--file F] [--json]
 //   foresight-bench graph --motions DIR [--json]
 //   foresight-bench lookahead [--scene maze] [--strategy command] [--json]
+//   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
 
 #include <CLI/CLI.hpp>
@@ -55,7 +56,13 @@ int main(int argc, char** argv) {
   l->add_option("--seed", lookahead.seed, "Placement seed");
   l->add_flag("--json", lookahead.json, "Print one JSON object as the last line");
 
+  LoadReportOptions load;
+  auto* lr = app.add_subcommand("load-report", "Table, CSV and chart from foresight-bots --json outputs (scripts/loadtest)");
+  lr->add_option("inputs", load.inputs, "Files ending in a foresight-bots --json line")->required();
+  lr->add_option("--out", load.out_dir, "Folder for loadtest.csv and loadtest.svg");
+
   CLI11_PARSE(app, argc, argv);
+  if (*lr) return bench_load_report(load);
   if (*l) return bench_lookahead(lookahead);
   if (*c) return bench_collision(collision);
   if (*b) return bench_bvh(bvh);
