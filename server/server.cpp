@@ -1,5 +1,6 @@
 #include "server.hpp"
 
+#include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
@@ -107,7 +108,8 @@ void Server::run() {
 }
 
 void Server::run_tick(Clock::time_point now) {
-  const Clock::time_point tick_start = now;
+  // `now` is the protocol's clock (tests pass their own); the work is measured on the real one.
+  const Clock::time_point tick_start = Clock::now();
   ++tick_;
   challenges_this_tick_ = 0;
   receive(now);
@@ -312,16 +314,7 @@ void Server::on_input(Player& p, const wire::Input& m) {
   // Older ones in the packet were either applied already or superseded.
   const wire::InputCommand* newest = commands->Get(commands->size() - 1);
   if (p.any_input && static_cast<int32_t>(newest->sequence() - p.last_input_seq) <= 0) return;
-  ControlInput in;
-  in.camera_dir = vec2(protocol::dequantize_unit(newest->dir_x()), protocol::dequantize_unit(newest->dir_y()));
-  in.camera_yaw_rad = protocol::dequantize_angle(newest->camera_yaw());
-  in.crouch = (static_cast<uint8_t>(newest->buttons()) & static_cast<uint8_t>(wire::Buttons::Crouch)) != 0;
-  if (glm::length(in.camera_dir) > 1.0f) {
-    // A corner of the square: legal bytes, but longer than a unit stick. Normalise, do not reject:
-    // a diagonal key pair quantises here.
-    in.camera_dir = glm::normalize(in.camera_dir);
-  }
-  p.avatar->set_input(in);
+  p.avatar->set_input(protocol::control_input_from_command(*newest));
   p.last_input_seq = newest->sequence();
   p.any_input = true;
 }
@@ -442,7 +435,9 @@ void Server::remove_player(size_t index) {
 bool Server::find_spawn(Placement& out) const {
   // Around the scene's spawn points (in order), on rings 0.9 m apart: the first place where the
   // idle segment is free of the scene and of every avatar's reservation.
-  for (int ring = 0; ring <= 12; ++ring) {
+  const vec2 extent = scene_.bounds.max_m - scene_.bounds.min_m;
+  const int rings = static_cast<int>(std::ceil(std::max(extent.x, extent.y) / 0.9f));
+  for (int ring = 0; ring <= rings; ++ring) {
     const int around = ring == 0 ? 1 : 6 * ring;
     for (const SpawnPoint& sp : scene_.spawns) {
       for (int k = 0; k < around; ++k) {

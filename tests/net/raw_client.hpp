@@ -1,6 +1,7 @@
 #pragma once
 // A bare client for server tests: a real UDP socket on loopback that sends hand-built packets
 // (valid and hostile) and reads the server's replies, with the server ticked in between.
+#include "protocol/input_packet.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/quantize.hpp"
 #include "protocol/udp_socket.hpp"
@@ -80,11 +81,10 @@ class RawClient {
 
   /// An Input holding one command: camera-space direction `dir`, camera yaw 0.
   void send_input(vec2 dir, uint32_t sequence) {
-    auto& fbb = writer_.begin();
-    const wire::InputCommand cmd(sequence, protocol::quantize_angle(0.0f), protocol::quantize_unit(dir.x),
-                                 protocol::quantize_unit(dir.y), wire::Buttons::NONE);
-    const auto commands = fbb.CreateVectorOfStructs(&cmd, 1);
-    send(writer_.finish(wire::CreateInput(fbb, session, 0, sequence, commands)));
+    ControlInput in;
+    in.camera_dir = dir;
+    const wire::InputCommand cmd = protocol::input_command_from(in, sequence);
+    send(protocol::write_input(writer_, session, 0, sequence, {&cmd, 1}));
   }
 
   uint32_t session = 0;

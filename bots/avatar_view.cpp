@@ -1,0 +1,27 @@
+#include "avatar_view.hpp"
+
+#include "protocol/quantize.hpp"
+
+namespace foresight::bots {
+
+bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& state,
+                     PlaybackState& out) {
+  const auto& graph = library.graph;
+  const int segment = state.segment();
+  if (segment >= static_cast<int>(graph.segments.size())) return false;
+  // motion_library_sample takes frames up to num_frames inclusive (the end frame).
+  const int frame = state.frame();
+  if (frame > graph.segments[static_cast<size_t>(segment)].num_frames()) return false;
+  const int transition = state.transition();
+  if (transition < -1 || transition >= static_cast<int>(graph.transitions.size())) return false;
+  if (transition >= 0 && graph.transitions[static_cast<size_t>(transition)].to != segment) return false;
+  out.segment = segment;
+  out.frame = frame;
+  out.incoming_transition = transition;
+  out.segment_start.pos_m = vec2(protocol::dequantize_mm(state.start_x_mm()),
+                                 protocol::dequantize_mm(state.start_z_mm()));
+  out.segment_start.heading_rad = protocol::dequantize_angle(state.start_heading());
+  return true;
+}
+
+}  // namespace foresight::bots

@@ -1,0 +1,15 @@
+#pragma once
+// An AvatarState from a snapshot, checked against our own copy of the motion library and turned
+// into the PlaybackState it describes. Snapshot contents are wire data: a segment, frame or
+// transition the library does not have is rejected here, before any library lookup.
+#include "foresight_generated.h"
+#include "library/playback.hpp"
+
+namespace foresight::bots {
+
+/// False when the state names a segment, frame or transition outside `library` (or a transition
+/// that does not lead into the segment).
+bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& state,
+                     PlaybackState& out);
+
+}  // namespace foresight::bots

@@ -1,0 +1,69 @@
+#pragma once
+// One bot's script: what it holds on the keys each frame, from where its avatar is.
+//   goals   a ScriptedPlayer (lookahead/scripted_player.hpp: reaction delays, hesitation,
+//           wrong taps, wiggles) steers from the avatar's position to a scene goal point picked at
+//           random; within the goal's radius it counts and picks another goal (with a single
+//           goal: a free point elsewhere first, uncounted, then the goal again).
+//   wander  the same player, to random free points 3-10 m away.
+//   replay  the scene's evaluation recording, sample-and-hold from the Accept on, open loop (the
+//           server's spawn is not the recording's, so it rarely ends at the recording's goal;
+//           counted when it does). It repeats, one second after it ends.
+// A target not reached within give_up_target_s is replaced; an avatar that jumps more than 3 m
+// between two frames (respawned) gets a new plan. Plans (A* over the scene) are the only
+// allocation, rationed per frame over all bots by the caller's plan budget.
+#include "bot_config.hpp"
+#include "bot_world.hpp"
+#include "lookahead/control_input.hpp"
+#include "lookahead/scripted_player.hpp"
+
+#include <cstdint>
+#include <random>
+
+namespace foresight::bots {
+
+class BotBrain {
+ public:
+  /// A fresh script (call on every Accept). `seed` is this bot's own.
+  void reset(BotScript script, uint64_t seed, double frame_interval_s);
+
+  /// The input to hold at t_s (seconds since Accept), seeing the avatar's root at `own` (nullptr:
+  /// not seen yet). `plans_left` is decremented for each route planned.
+  ControlInput frame(const BotWorld& world, const BotFleetConfig& config, double t_s,
+                     const Placement* own, int& plans_left);
+
+  uint64_t targets_reached() const { return targets_reached_; }
+  uint64_t plan_failures() const { return plan_failures_; }
+  uint64_t targets_given_up() const { return targets_given_up_; }
+  /// Path length of the avatar's root as seen frame to frame (jumps over 3 m excluded).
+  double walked_m() const { return walked_m_; }
+
+ private:
+  ControlInput steer(const BotWorld& world, const BotFleetConfig& config, double t_s,
+                     const Placement& own, int& plans_left);
+  ControlInput replay(const BotWorld& world, double t_s, vec2 pos);
+  bool pick_target(const BotWorld& world, vec2 pos);
+  bool pick_free_point(const BotWorld& world, vec2 pos);
+  ControlInput waiting() const;
+  double unit() { return static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
+
+  BotScript script_ = BotScript::kGoals;
+  std::mt19937_64 rng_;
+  ScriptedPlayer player_;
+  ScriptedPlayerConfig player_config_;
+  bool has_target_ = false;
+  vec2 target_{0.0f};
+  float target_radius_m_ = 0.75f;
+  bool target_counts_ = false;
+  int target_goal_ = -1;  ///< Scene goal index, -1 for a free point.
+  double target_since_s_ = 0;
+  double next_plan_s_ = 0;
+  bool has_last_pos_ = false;
+  vec2 last_pos_{0.0f};
+  float camera_yaw_rad_ = 0;  ///< Kept while waiting, so a stop is a stop and nothing else.
+  int64_t replay_loop_ = -1;
+  bool replay_reached_ = false;
+  uint64_t targets_reached_ = 0, plan_failures_ = 0, targets_given_up_ = 0;
+  double walked_m_ = 0;
+};
+
+}  // namespace foresight::bots

@@ -1,0 +1,34 @@
+#pragma once
+// What every bot of a process shares, read-only once loaded: the motion library (the server
+// checks its hash at connect), the scene the server named in its Accept with its collision world,
+// and for the replay script the scene's evaluation recording. Loaded once, on the first Accept.
+#include "bot_config.hpp"
+#include "library/motion_library.hpp"
+#include "lookahead/recording.hpp"
+#include "world/collision_world.hpp"
+#include "world/scene.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace foresight::bots {
+
+struct BotWorld {
+  const MotionLibrary* library = nullptr;
+  bool loaded = false;
+  Scene scene;
+  CollisionWorld world;
+  std::string scene_name;  ///< As the server named it in Accept.
+  Recording recording;     ///< kReplay only.
+  float body_height_m = 0; ///< lowest_moving_body_m(library): where routes must be free.
+};
+
+/// data/recordings/<scene>_eval.json
+std::filesystem::path bot_recording_path(const std::string& scene_name);
+
+/// Loads the scene (data_paths.hpp's scene_world_load: a built-in name or a path) and, for
+/// kReplay, its recording. False with a reason naming the file.
+bool bot_world_load(BotWorld& out, const MotionLibrary& library, const std::string& scene_name,
+                    BotScript script, std::string& error);
+
+}  // namespace foresight::bots

@@ -1,0 +1,415 @@
+#include "protocol/client_connection.hpp"
+
+#include "protocol/input_packet.hpp"
+
+#include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+namespace foresight::protocol {
+
+namespace {
+
+/// Serial-number order (RFC 1982): ticks, sequences and client times wrap at 2^32.
+bool newer(uint32_t a, uint32_t b) { return static_cast<int32_t>(a - b) > 0; }
+
+double ms_between(ClientConnection::TimePoint from, ClientConnection::TimePoint to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
+
+std::string endpoint_text(const Endpoint& e) {
+  return e.address().to_string() + ":" + std::to_string(e.port());
+}
+
+std::string hash_text(uint64_t hash) {
+  char buf[24];
+  std::snprintf(buf, sizeof(buf), "%016" PRIx64, hash);
+  return buf;
+}
+
+bool same_payload(const wire::InputCommand& a, const wire::InputCommand& b) {
+  return a.camera_yaw() == b.camera_yaw() && a.dir_x() == b.dir_x() && a.dir_y() == b.dir_y() &&
+         a.buttons() == b.buttons();
+}
+
+bool is_stop(const wire::InputCommand& c) {
+  return c.dir_x() == 0 && c.dir_y() == 0 && c.buttons() == wire::Buttons::NONE;
+}
+
+}  // namespace
+
+const char* client_state_name(ClientState state) {
+  switch (state) {
+    case ClientState::kConnecting: return "connecting";
+    case ClientState::kConnected: return "connected";
+    case ClientState::kRefused: return "refused";
+    case ClientState::kTimedOut: return "timed_out";
+    case ClientState::kServerGone: return "server_gone";
+    case ClientState::kClosed: return "closed";
+  }
+  return "unknown";
+}
+
+ClientConnection::ClientConnection(const ClientConfig& config) : config_(config) {
+  avatars_.reserve(config_.reserve_avatars);
+}
+
+bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std::string name,
+                             TimePoint now) {
+  if (!socket_.is_open()) {
+    std::string error;
+    // An IPv6 server needs an IPv6 socket, whatever the configured (IPv4 "any") address.
+    const bool v6 = server.address().is_v6() && config_.bind_address == "0.0.0.0";
+    if (!socket_.open(v6 ? "::" : config_.bind_address, 0, error)) {
+      set_state(ClientState::kClosed, "cannot open a UDP socket: " + error);
+      return false;
+    }
+  }
+  server_ = server;
+  library_hash_ = library_hash;
+  name_ = std::move(name);
+  cookie_size_ = 0;
+  started_at_ = now;
+  accepted_at_ = last_heard_ = now;
+  accept_ = {};
+  refuse_ = {};
+  held_ = {};
+  num_commands_ = 0;
+  sequence_ = ack_input_ = 0;
+  has_snapshot_ = has_own_avatar_ = false;
+  snapshot_parts_seen_.reset();
+  avatars_.clear();
+  newest_echo_ms_ = 0;
+  sent_times_.fill({});
+  set_state(ClientState::kConnecting, "connecting to " + endpoint_text(server_) + " ...");
+  send_handshake(now);
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Receiving.
+
+void ClientConnection::poll(TimePoint now) {
+  if (!socket_.is_open()) return;
+  for (int i = 0; i < config_.max_datagrams_per_poll; ++i) {
+    const ptrdiff_t n = socket_.receive(receive_buffer_, from_);
+    if (n < 0) break;
+    // The socket is not connected: anyone may send to it. Only the server's datagrams count.
+    if (from_ != server_) {
+      drops_.add(DropReason::kUnexpected);
+      continue;
+    }
+    bytes_received_ += static_cast<uint64_t>(n);
+    ++packets_received_;
+    if (static_cast<size_t>(n) > receive_buffer_.size()) {
+      drops_.add(DropReason::kTooLarge);
+      continue;
+    }
+    DropReason reason = DropReason::kNone;
+    const wire::Packet* packet =
+        packet_read({receive_buffer_.data(), static_cast<size_t>(n)}, reason);
+    if (packet == nullptr) {
+      drops_.add(reason);
+      continue;
+    }
+    handle(*packet, now);
+  }
+}
+
+void ClientConnection::handle(const wire::Packet& packet, TimePoint now) {
+  const bool connecting = state_ == ClientState::kConnecting;
+  const bool connected = state_ == ClientState::kConnected;
+  switch (packet.message_type()) {
+    case wire::Message::Challenge:
+      if (!connecting) break;
+      on_challenge(*packet.message_as_Challenge(), now);
+      return;
+    case wire::Message::Accept:
+      if (connecting) {
+        on_accept(*packet.message_as_Accept(), now);
+        return;
+      }
+      // The server answers each resent ConnectResponse: later copies of our Accept are harmless.
+      if (connected && packet.message_as_Accept()->session() == accept_.session) {
+        last_heard_ = now;
+        return;
+      }
+      break;
+    case wire::Message::Refuse:
+      if (connecting) {
+        on_refuse(*packet.message_as_Refuse());
+        return;
+      }
+      if (connected && packet.message_as_Refuse()->reason() == wire::RefuseReason::ShuttingDown) {
+        set_state(ClientState::kServerGone, "the server is shutting down");
+        return;
+      }
+      break;
+    case wire::Message::Snapshot:
+      if (!connected) break;
+      last_heard_ = now;
+      on_snapshot(*packet.message_as_Snapshot(), now);
+      return;
+    case wire::Message::ServerStats:
+      if (!connected) break;
+      last_heard_ = now;
+      on_stats(*packet.message_as_ServerStats());
+      return;
+    case wire::Message::Disconnect:
+      if (connected && packet.message_as_Disconnect()->session() == accept_.session) {
+        set_state(ClientState::kServerGone, "the server ended the session");
+        return;
+      }
+      break;
+    default:
+      break;
+  }
+  drops_.add(DropReason::kUnexpected);
+}
+
+void ClientConnection::on_challenge(const wire::Challenge& m, TimePoint now) {
+  const auto* cookie = m.cookie();
+  if (cookie == nullptr || cookie->size() == 0 || cookie->size() > cookie_.size()) {
+    drops_.add(DropReason::kInvalidInput);
+    return;
+  }
+  // Repeats of the same Challenge (one per resent ConnectRequest) change nothing.
+  if (cookie_size_ == cookie->size() && std::equal(cookie->begin(), cookie->end(), cookie_.begin())) {
+    return;
+  }
+  std::copy(cookie->begin(), cookie->end(), cookie_.begin());
+  cookie_size_ = cookie->size();
+  status_ = "connecting to " + endpoint_text(server_) + " (challenge received) ...";
+  send_handshake(now);
+}
+
+void ClientConnection::on_accept(const wire::Accept& m, TimePoint now) {
+  accept_.session = m.session();
+  accept_.avatar = m.avatar();
+  accept_.scene = m.scene() ? m.scene()->str() : std::string();
+  accept_.library_name = m.library_name() ? m.library_name()->str() : std::string();
+  accept_.library_hash = m.library_hash();
+  accept_.tick_hz = m.tick_hz();
+  accept_.snapshot_hz = m.snapshot_hz();
+  accepted_at_ = last_heard_ = now;
+  // The first Input goes out with the next flush(), whatever the input interval.
+  last_input_sent_ = last_packet_sent_ = now - std::chrono::hours(1);
+  set_state(ClientState::kConnected,
+            "connected to " + endpoint_text(server_) + ": session " + std::to_string(accept_.session) +
+                ", avatar " + std::to_string(accept_.avatar) + ", scene '" + accept_.scene +
+                "', " + std::to_string(accept_.tick_hz) + " Hz tick, " +
+                std::to_string(accept_.snapshot_hz) + " Hz snapshots");
+}
+
+void ClientConnection::on_refuse(const wire::Refuse& m) {
+  refuse_.reason = m.reason();
+  refuse_.message = m.message() ? m.message()->str() : std::string();
+  refuse_.server_library_hash = m.server_library_hash();
+  std::string text = "refused by " + endpoint_text(server_) + " (" +
+                     wire::EnumNameRefuseReason(refuse_.reason) + ")";
+  if (!refuse_.message.empty()) text += ": " + refuse_.message;
+  switch (refuse_.reason) {
+    case wire::RefuseReason::Library:
+      // The server's own message usually names both hashes already; add them when it does not.
+      if (refuse_.message.find(hash_text(library_hash_)) == std::string::npos) {
+        text += " [our motion library " + hash_text(library_hash_) + ", the server's " +
+                hash_text(refuse_.server_library_hash) +
+                ": run both with the same library (--motions DIR or the built-in default)]";
+      }
+      break;
+    case wire::RefuseReason::ProtocolVersion:
+      text += " [we speak protocol " + std::to_string(kProtocolVersion) + "]";
+      break;
+    default:
+      break;
+  }
+  set_state(ClientState::kRefused, std::move(text));
+}
+
+void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
+  const uint32_t tick = m.tick();
+  const int parts = m.parts();
+  const int part = m.part();
+  if (parts == 0 || part >= parts) {
+    drops_.add(DropReason::kInvalidInput);
+    return;
+  }
+  if (!has_snapshot_ || newer(tick, snapshot_tick_)) {
+    if (has_snapshot_) snapshot_interval_ms_.add(ms_between(last_new_tick_at_, now));
+    has_snapshot_ = true;
+    snapshot_tick_ = tick;
+    snapshot_parts_ = parts;
+    snapshot_parts_seen_.reset();
+    avatars_.clear();
+    last_new_tick_at_ = now;
+    ++snapshot_ticks_;
+  } else if (tick != snapshot_tick_) {
+    return;  // a late part of an older tick: valid, but superseded
+  } else if (parts != snapshot_parts_) {
+    drops_.add(DropReason::kInvalidInput);
+    return;
+  }
+  if (snapshot_parts_seen_.test(static_cast<size_t>(part))) return;  // duplicated datagram
+  snapshot_parts_seen_.set(static_cast<size_t>(part));
+  ++snapshot_packets_;
+
+  if (const auto* list = m.avatars()) {
+    for (const wire::AvatarState* a : *list) {
+      avatars_.push_back(*a);
+      if (a->id() == accept_.avatar || (a->flags() & kAvatarYours) != 0) {
+        own_avatar_ = *a;
+        own_avatar_tick_ = tick;
+        has_own_avatar_ = true;
+      }
+    }
+  }
+  if (newer(m.ack_input(), ack_input_)) ack_input_ = m.ack_input();
+
+  // One round-trip sample per newly echoed client time: later snapshots repeat the echo until
+  // the server receives our next packet, and would only measure how long we were silent.
+  const uint32_t echo = m.echo_client_time_ms();
+  if (echo != 0 && (newest_echo_ms_ == 0 || newer(echo, newest_echo_ms_))) {
+    newest_echo_ms_ = echo;
+    double rtt = ms_between(started_at_, now) + 1.0 - static_cast<double>(echo);  // ms resolution
+    for (const SentTime& s : sent_times_) {
+      if (s.client_time_ms == echo) {
+        rtt = ms_between(s.at, now);  // exact, when the packet is still in the ring
+        break;
+      }
+    }
+    last_rtt_ms_ = std::max(rtt, 0.0);
+    rtt_ms_.add(last_rtt_ms_);
+  }
+}
+
+void ClientConnection::on_stats(const wire::ServerStats& m) {
+  stats_.tick = m.tick();
+  stats_.players = m.players();
+  stats_.tick_hz = m.tick_hz();
+  stats_.tick_ms_p50 = m.tick_ms_p50();
+  stats_.tick_ms_p99 = m.tick_ms_p99();
+  stats_.tick_ms_max = m.tick_ms_max();
+  stats_.overruns = m.overruns();
+  stats_.budget_ms_mean = m.budget_ms_mean();
+  stats_.lookahead_ms_mean = m.lookahead_ms_mean();
+  stats_.expansions_per_tick_mean = m.expansions_per_tick_mean();
+  stats_.tree_size_mean = m.tree_size_mean();
+  stats_.tree_size_min = m.tree_size_min();
+  stats_.packets_in = m.packets_in();
+  stats_.packets_dropped = m.packets_dropped();
+  stats_.avatar_contacts = m.avatar_contacts();
+  ++stats_count_;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sending.
+
+void ClientConnection::flush(TimePoint now) {
+  if (state_ == ClientState::kConnecting) {
+    if (now - started_at_ >= config_.handshake_timeout) {
+      set_state(ClientState::kTimedOut,
+                "no answer from " + endpoint_text(server_) + " within " +
+                    std::to_string(config_.handshake_timeout.count()) + " ms" +
+                    (cookie_size_ ? " after its challenge" : " (is the server running?)"));
+      return;
+    }
+    if (now >= next_handshake_send_) send_handshake(now);
+    return;
+  }
+  if (state_ != ClientState::kConnected) return;
+  if (now - last_heard_ >= config_.server_timeout) {
+    set_state(ClientState::kServerGone, "nothing heard from " + endpoint_text(server_) + " for " +
+                                            std::to_string(config_.server_timeout.count()) + " ms");
+    return;
+  }
+  send_input(now);
+}
+
+void ClientConnection::send_handshake(TimePoint now) {
+  if (cookie_size_ == 0) {
+    send(write_connect_request(writer_, library_hash_, name_));
+  } else {
+    send(write_connect_response(writer_, library_hash_, {cookie_.data(), cookie_size_}, name_));
+  }
+  next_handshake_send_ = now + config_.handshake_resend;
+}
+
+void ClientConnection::send_input(TimePoint now) {
+  const wire::InputCommand next = input_command_from(held_, sequence_ + 1);
+  const bool idle = num_commands_ > 0 && is_stop(next) &&
+                    same_payload(next, commands_[static_cast<size_t>(num_commands_ - 1)]) &&
+                    !newer(sequence_, ack_input_);
+  const uint32_t time_ms = client_time_ms(now);
+  if (idle) {
+    if (now - last_packet_sent_ >= config_.heartbeat_interval) {
+      remember_send_time(time_ms, now);
+      send(write_heartbeat(writer_, accept_.session, time_ms));
+      last_packet_sent_ = now;
+    }
+    return;
+  }
+  if (now - last_input_sent_ < config_.min_input_interval) return;
+  ++sequence_;
+  if (num_commands_ == kInputRedundancy) {
+    std::move(commands_.begin() + 1, commands_.end(), commands_.begin());
+    --num_commands_;
+  }
+  commands_[static_cast<size_t>(num_commands_++)] = next;
+  remember_send_time(time_ms, now);
+  send(write_input(writer_, accept_.session, snapshot_tick_, time_ms,
+                   {commands_.data(), static_cast<size_t>(num_commands_)}));
+  ++inputs_sent_;
+  last_input_sent_ = last_packet_sent_ = now;
+}
+
+void ClientConnection::set_input(const ControlInput& input) {
+  held_ = input;
+  if (!std::isfinite(held_.camera_yaw_rad)) held_.camera_yaw_rad = 0.0f;
+  if (!std::isfinite(held_.camera_dir.x) || !std::isfinite(held_.camera_dir.y)) {
+    held_.camera_dir = vec2(0.0f);
+  }
+  const float len2 = glm::dot(held_.camera_dir, held_.camera_dir);
+  if (len2 > 1.0f) held_.camera_dir /= std::sqrt(len2);
+}
+
+void ClientConnection::request_stats() {
+  if (state_ == ClientState::kConnected) send(write_stats_request(writer_, accept_.session));
+}
+
+void ClientConnection::disconnect() {
+  if (state_ == ClientState::kConnected) {
+    // Not acknowledged: a few copies make a lost one unlikely to leave a ghost until the timeout.
+    for (int i = 0; i < 3; ++i) send(write_disconnect(writer_, accept_.session));
+  }
+  if (state_ == ClientState::kConnected || state_ == ClientState::kConnecting) {
+    set_state(ClientState::kClosed, "disconnected");
+  }
+}
+
+void ClientConnection::send(std::span<const uint8_t> datagram) {
+  if (socket_.send(datagram, server_)) {
+    bytes_sent_ += datagram.size();
+  } else {
+    ++send_failures_;
+  }
+}
+
+void ClientConnection::remember_send_time(uint32_t client_time_ms, TimePoint at) {
+  sent_times_[next_sent_time_] = {client_time_ms, at};
+  next_sent_time_ = (next_sent_time_ + 1) % sent_times_.size();
+}
+
+void ClientConnection::set_state(ClientState state, std::string message) {
+  state_ = state;
+  status_ = std::move(message);
+}
+
+uint32_t ClientConnection::client_time_ms(TimePoint now) const {
+  // +1: an echo of 0 means "nothing received yet" on the wire.
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now - started_at_).count();
+  return static_cast<uint32_t>(ms + 1);
+}
+
+}  // namespace foresight::protocol

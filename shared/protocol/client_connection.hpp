@@ -1,0 +1,241 @@
+#pragma once
+// The client side of the protocol (docs/PROTOCOL.md): handshake, Inputs with redundancy,
+// Heartbeats, Snapshots, stats. Used by the bots and the interactive client.
+//
+// Caller-driven and single-threaded: nothing happens between calls, and every call takes the
+// time (std::chrono::steady_clock) from the caller, so tests can run minutes in microseconds.
+// Per frame the caller does
+//   poll(now)        read and handle everything waiting on the socket (may also be called
+//                    whenever the socket is readable, for precise arrival times: socket_fd())
+//   set_input(...)   the input held this frame
+//   flush(now)       timeouts, handshake resends, and at most one Input (or Heartbeat) packet
+// or update(now), which is poll(now) then flush(now).
+//
+// Every datagram goes through packet_read(); one that fails, comes from another address, or is a
+// message the client never receives (or not in its state) is dropped and counted by reason.
+// Once warm, nothing here allocates per packet: the avatar list is reserved (it grows only when
+// a snapshot holds more avatars than ever before), strings are built on state changes only.
+#include "lookahead/control_input.hpp"
+#include "protocol/histogram.hpp"
+#include "protocol/packet.hpp"
+#include "protocol/udp_socket.hpp"
+
+#include <array>
+#include <bitset>
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace foresight::protocol {
+
+enum class ClientState : uint8_t {
+  kConnecting,  ///< Handshake under way (ConnectRequest / ConnectResponse resent every 250 ms).
+  kConnected,   ///< Accepted: sending Inputs, receiving Snapshots.
+  kRefused,     ///< The server said no (refuse() tells why). Final.
+  kTimedOut,    ///< The handshake got no answer in time. Final.
+  kServerGone,  ///< Connected, then silence from the server (or it ended the session). Final.
+  kClosed,      ///< Not started, start() failed, or disconnect() was called.
+};
+const char* client_state_name(ClientState state);
+
+struct ClientConfig {
+  std::chrono::milliseconds handshake_resend{250};
+  std::chrono::milliseconds handshake_timeout{5000};  ///< From start() to Accept / Refuse.
+  std::chrono::milliseconds server_timeout{5000};     ///< Silence after which the server is gone.
+  std::chrono::milliseconds heartbeat_interval{1000}; ///< While idle (nothing new to send).
+  /// Least time between two Inputs (0: one per flush()). For clients that render faster than
+  /// the server needs commands.
+  std::chrono::milliseconds min_input_interval{0};
+  size_t reserve_avatars = 256;         ///< Initial capacity of the snapshot's avatar list.
+  int max_datagrams_per_poll = 4096;    ///< Bounds one poll() under a flood.
+  std::string bind_address = "0.0.0.0";  ///< Local address (becomes "::" for an IPv6 server).
+};
+
+struct AcceptInfo {
+  uint32_t session = 0;
+  uint32_t avatar = 0;
+  std::string scene;
+  std::string library_name;
+  uint64_t library_hash = 0;
+  uint16_t tick_hz = 0;
+  uint16_t snapshot_hz = 0;
+};
+
+struct RefuseInfo {
+  wire::RefuseReason reason = wire::RefuseReason::None;
+  std::string message;
+  uint64_t server_library_hash = 0;
+};
+
+/// A copy of the newest ServerStats (schema/foresight.fbs documents each field).
+struct ServerFigures {
+  uint32_t tick = 0;
+  uint32_t players = 0;
+  uint16_t tick_hz = 0;
+  float tick_ms_p50 = 0, tick_ms_p99 = 0, tick_ms_max = 0;
+  uint64_t overruns = 0;
+  float budget_ms_mean = 0, lookahead_ms_mean = 0, expansions_per_tick_mean = 0;
+  float tree_size_mean = 0;
+  uint32_t tree_size_min = 0;
+  uint64_t packets_in = 0, packets_dropped = 0, avatar_contacts = 0;
+};
+
+class ClientConnection {
+ public:
+  using Clock = std::chrono::steady_clock;
+  using TimePoint = Clock::time_point;
+
+  explicit ClientConnection(const ClientConfig& config = {});
+  ClientConnection(const ClientConnection&) = delete;
+  ClientConnection& operator=(const ClientConnection&) = delete;
+
+  /// Opens the socket (once; a restart keeps the port), forgets any previous session and sends
+  /// the first ConnectRequest. `library_hash` is MotionLibrary::content_hash of the library the
+  /// caller rebuilds poses with. False (state kClosed, status_message() says why) when the socket
+  /// cannot be opened.
+  bool start(const Endpoint& server, uint64_t library_hash, std::string name, TimePoint now);
+
+  /// Reads and handles every waiting datagram (at most config.max_datagrams_per_poll).
+  void poll(TimePoint now);
+  /// Timeouts, handshake resends, and while connected one Input (a new command holding the
+  /// current input, plus the previous ones up to kInputRedundancy) or, when idle, a Heartbeat
+  /// once per heartbeat_interval. Idle: the held input is "stop", equal to the newest command,
+  /// and the server has acknowledged that command.
+  void flush(TimePoint now);
+  void update(TimePoint now) {
+    poll(now);
+    flush(now);
+  }
+
+  /// The input held from now on (sent by the following flush() calls). Clamped to be valid.
+  void set_input(const ControlInput& input);
+  /// Asks the server for its ServerStats (answered asynchronously: see server_stats_count()).
+  void request_stats();
+  /// Ends the session: sends Disconnect three times (it is not acknowledged), then kClosed.
+  void disconnect();
+
+  ClientState state() const { return state_; }
+  bool connected() const { return state_ == ClientState::kConnected; }
+  /// For people: what the client is doing, or why it stopped.
+  const std::string& status_message() const { return status_; }
+  /// Valid once connected (and after, for the record).
+  const AcceptInfo& accept() const { return accept_; }
+  const RefuseInfo& refuse() const { return refuse_; }
+  TimePoint started_at() const { return started_at_; }
+  TimePoint accepted_at() const { return accepted_at_; }
+  /// The socket's descriptor (for epoll / poll by callers that wait on many clients); -1 closed.
+  int socket_fd() { return socket_.native_handle(); }
+  uint16_t local_port() const { return socket_.local_port(); }
+
+  // Snapshots. The newest tick seen: its parts are merged as they arrive; a newer tick replaces
+  // it; parts of older ticks are ignored.
+  bool has_snapshot() const { return has_snapshot_; }
+  uint32_t snapshot_tick() const { return snapshot_tick_; }
+  int snapshot_parts() const { return snapshot_parts_; }
+  int snapshot_parts_received() const { return static_cast<int>(snapshot_parts_seen_.count()); }
+  std::span<const wire::AvatarState> avatars() const { return avatars_; }
+  /// The client's own avatar as last seen (possibly from an older tick), or nullptr.
+  const wire::AvatarState* own_avatar() const { return has_own_avatar_ ? &own_avatar_ : nullptr; }
+  uint32_t own_avatar_tick() const { return own_avatar_tick_; }
+  /// Snapshot datagrams (parts) taken, and new ticks seen.
+  uint64_t snapshot_packets() const { return snapshot_packets_; }
+  uint64_t snapshot_ticks() const { return snapshot_ticks_; }
+
+  // Measurements.
+  /// Round trip, ms: arrival of a snapshot minus the client time it echoes (one sample per new
+  /// echo). Includes the wait at the server for its next snapshot (up to 1 / snapshot_hz).
+  const LogHistogram& rtt_ms() const { return rtt_ms_; }
+  double last_rtt_ms() const { return last_rtt_ms_; }
+  /// Time between the arrivals of consecutive new snapshot ticks, ms.
+  const LogHistogram& snapshot_interval_ms() const { return snapshot_interval_ms_; }
+  uint64_t bytes_received() const { return bytes_received_; }  ///< Every datagram from the server.
+  uint64_t bytes_sent() const { return bytes_sent_; }
+  uint64_t packets_received() const { return packets_received_; }
+  uint64_t inputs_sent() const { return inputs_sent_; }
+  uint64_t send_failures() const { return send_failures_; }
+  const DropCounters& drops() const { return drops_; }
+  uint32_t input_sequence() const { return sequence_; }   ///< Newest command sent (0: none).
+  uint32_t server_ack_input() const { return ack_input_; }
+  /// The newest ServerStats, valid when server_stats_count() > 0.
+  const ServerFigures& server_stats() const { return stats_; }
+  uint64_t server_stats_count() const { return stats_count_; }
+
+ private:
+  void handle(const wire::Packet& packet, TimePoint now);
+  void on_challenge(const wire::Challenge& m, TimePoint now);
+  void on_accept(const wire::Accept& m, TimePoint now);
+  void on_refuse(const wire::Refuse& m);
+  void on_snapshot(const wire::Snapshot& m, TimePoint now);
+  void on_stats(const wire::ServerStats& m);
+  void send_handshake(TimePoint now);
+  void send_input(TimePoint now);
+  void send(std::span<const uint8_t> datagram);
+  void remember_send_time(uint32_t client_time_ms, TimePoint at);
+  void set_state(ClientState state, std::string message);
+  uint32_t client_time_ms(TimePoint now) const;
+
+  ClientConfig config_;
+  UdpSocket socket_;
+  PacketWriter writer_;
+  std::array<uint8_t, kMaxDatagramBytes> receive_buffer_{};
+  Endpoint server_;
+  Endpoint from_;  ///< Scratch for receive().
+
+  // Connection.
+  ClientState state_ = ClientState::kClosed;
+  std::string status_ = "not started";
+  uint64_t library_hash_ = 0;
+  std::string name_;
+  std::array<uint8_t, 64> cookie_{};
+  size_t cookie_size_ = 0;  ///< 0: no Challenge yet.
+  TimePoint started_at_{};
+  TimePoint accepted_at_{};
+  TimePoint last_heard_{};
+  TimePoint next_handshake_send_{};
+  AcceptInfo accept_;
+  RefuseInfo refuse_;
+
+  // Input.
+  ControlInput held_;
+  std::array<wire::InputCommand, kInputRedundancy> commands_{};  ///< Newest last.
+  int num_commands_ = 0;
+  uint32_t sequence_ = 0;
+  uint32_t ack_input_ = 0;
+  TimePoint last_input_sent_{};
+  TimePoint last_packet_sent_{};
+
+  // Snapshots.
+  bool has_snapshot_ = false;
+  uint32_t snapshot_tick_ = 0;
+  int snapshot_parts_ = 0;
+  std::bitset<256> snapshot_parts_seen_;
+  std::vector<wire::AvatarState> avatars_;
+  bool has_own_avatar_ = false;
+  wire::AvatarState own_avatar_{};
+  uint32_t own_avatar_tick_ = 0;
+  TimePoint last_new_tick_at_{};
+  uint32_t newest_echo_ms_ = 0;
+  /// When the last few Inputs / Heartbeats left, by their client time: an echo then gives the
+  /// exact round trip instead of one rounded to the millisecond.
+  struct SentTime {
+    uint32_t client_time_ms = 0;
+    TimePoint at{};
+  };
+  std::array<SentTime, 64> sent_times_{};
+  size_t next_sent_time_ = 0;
+
+  // Measurements.
+  LogHistogram rtt_ms_;
+  LogHistogram snapshot_interval_ms_;
+  double last_rtt_ms_ = 0;
+  uint64_t bytes_received_ = 0, bytes_sent_ = 0, packets_received_ = 0;
+  uint64_t inputs_sent_ = 0, send_failures_ = 0;
+  uint64_t snapshot_packets_ = 0, snapshot_ticks_ = 0;
+  DropCounters drops_;
+  ServerFigures stats_;
+  uint64_t stats_count_ = 0;
+};
+
+}  // namespace foresight::protocol

@@ -1,0 +1,169 @@
+// Real bots (BotFleet: ClientConnection, scripts, collision watch) against a real server, both
+// in this process over loopback UDP and driven by one fake clock: server tick, then bot frame,
+// 33 ms apart. Deterministic in the server's expansion-budget mode, and minutes of play take
+// seconds.
+#include "bot_fleet.hpp"
+#include "raw_client.hpp"
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+namespace foresight {
+namespace {
+
+using namespace std::chrono_literals;
+
+struct Match {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  bots::BotFleetConfig config;
+
+  explicit Match(const std::string& scene, int bots, bots::BotScript script) {
+    std::string error;
+    EXPECT_TRUE(server.start(test::test_server_config(scene), error)) << error;
+    EXPECT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(server.port()), config.server, error));
+    config.count = bots;
+    config.script = script;
+    config.seed = 7;
+  }
+  /// `frames` of both: a server tick, then a bot frame, 33 ms apart.
+  void play(bots::BotFleet& fleet, int frames) {
+    for (int i = 0; i < frames; ++i) {
+      now += 33ms;
+      server.run_tick(now);
+      fleet.frame(now);
+    }
+  }
+};
+
+TEST(Bots, GoalSeekersConnectWalkAndNeverCollide) {
+  Match m("arena", 6, bots::BotScript::kGoals);
+  bots::BotFleet fleet(m.server.library(), m.config);
+  ASSERT_TRUE(fleet.ok()) << fleet.error();
+  m.play(fleet, 30 * 40);  // 40 s
+  fleet.request_stats();
+  m.play(fleet, 5);
+  ASSERT_TRUE(fleet.stats_arrived());
+  const bots::BotReport r = fleet.report(m.now);
+  fleet.disconnect_all();
+
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.connected, 6);
+  EXPECT_EQ(r.connected_at_end, 6);
+  EXPECT_EQ(r.scene, "arena");
+  EXPECT_GT(r.walked_m_mean, 10.0) << "the scripted players should move their avatars";
+  EXPECT_GT(r.goals_reached, 0u);
+  EXPECT_EQ(r.scene_collisions, 0u);
+  EXPECT_EQ(r.avatar_contacts, 0u);
+  EXPECT_EQ(r.invalid_states, 0u);
+  EXPECT_GT(r.avatars_checked, 6u * 20 * 30);
+  EXPECT_EQ(r.drops.total(), 0u);
+  EXPECT_GT(r.rtt_ms.count(), 100u);
+  EXPECT_GT(r.snapshot_interval_ms.count(), 100u);
+  EXPECT_GT(r.down_kbps_p50, 0.0);
+  ASSERT_TRUE(r.has_server_stats);
+  EXPECT_EQ(r.server.players, 6u);
+  EXPECT_EQ(r.server.avatar_contacts, 0u);
+
+  const nlohmann::json j = bots::bot_report_json(r);
+  for (const char* key : {"bots", "connected", "refused", "goals_reached", "collisions", "rtt_ms_p50",
+                          "rtt_ms_p99", "snapshot_interval_ms_p99", "down_kbps_per_client_p50",
+                          "server_tick_ms_p99", "server_overruns", "tree_size_mean", "packets_dropped"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["bots"], 6);
+  EXPECT_FALSE(j["server_tick_ms_p99"].is_null());
+}
+
+TEST(Bots, AGoalSeekerReachesTheGoalInTheMazeAndTheObstacleCourseCrouchingWhereNeeded) {
+  for (const char* scene : {"maze", "obstacles"}) {
+    Match m(scene, 1, bots::BotScript::kGoals);
+    bots::BotFleet fleet(m.server.library(), m.config);
+    ASSERT_TRUE(fleet.ok()) << fleet.error();
+    bool crouched = false;
+    uint64_t goals = 0;
+    int frame = 0;
+    for (; frame < 30 * 120 && goals == 0; ++frame) {  // up to 2 minutes
+      m.play(fleet, 1);
+      for (uint32_t id : m.server.avatar_ids()) {
+        const int segment = m.server.avatar(id)->playback().segment;
+        crouched |= (m.server.library().graph.segments[static_cast<size_t>(segment)].tags & kTagCrouch) != 0;
+      }
+      goals = fleet.report(m.now).goals_reached;
+    }
+    const bots::BotReport r = fleet.report(m.now);
+    EXPECT_GE(r.goals_reached, 1u) << scene;
+    EXPECT_EQ(r.scene_collisions + r.avatar_contacts, 0u) << scene;
+    // The obstacle course has a beam only a crouching body passes: the bot never presses crouch,
+    // the look-ahead finds the crouched motions by itself.
+    if (std::string(scene) == "obstacles") {
+      EXPECT_TRUE(crouched);
+    }
+    std::printf("[          ] %s: first goal after %.1f s%s\n", scene, frame / 30.0,
+                crouched ? ", crouched on the way" : "");
+    fleet.disconnect_all();
+  }
+}
+
+TEST(Bots, WanderersAndReplayersMove) {
+  for (bots::BotScript script : {bots::BotScript::kWander, bots::BotScript::kReplay}) {
+    Match m("maze", 3, script);
+    bots::BotFleet fleet(m.server.library(), m.config);
+    m.play(fleet, 30 * 15);
+    const bots::BotReport r = fleet.report(m.now);
+    EXPECT_TRUE(r.error.empty()) << r.error;
+    EXPECT_EQ(r.connected, 3) << r.script;
+    EXPECT_GT(r.walked_m_mean, 3.0) << r.script;
+    EXPECT_EQ(r.scene_collisions, 0u) << r.script;
+    EXPECT_EQ(r.avatar_contacts, 0u) << r.script;
+  }
+}
+
+TEST(Bots, AnotherLibraryIsRefusedAndReported) {
+  Match m("maze", 3, bots::BotScript::kGoals);
+  MotionLibrary other = m.server.library();
+  other.content_hash ^= 1;  // what a different --motions folder would give
+  bots::BotFleet fleet(other, m.config);
+  m.play(fleet, 10);
+  EXPECT_TRUE(fleet.all_finished());
+  const bots::BotReport r = fleet.report(m.now);
+  EXPECT_EQ(r.connected, 0);
+  EXPECT_EQ(r.refused, 3);
+  ASSERT_EQ(r.refusals.size(), 1u) << "one distinct message, not one per bot";
+  EXPECT_NE(r.refusals[0].find("Library"), std::string::npos) << r.refusals[0];
+  EXPECT_EQ(m.server.num_players(), 0);
+}
+
+TEST(Bots, DisconnectEndsTheSessionsAtOnce) {
+  Match m("maze", 4, bots::BotScript::kGoals);
+  bots::BotFleet fleet(m.server.library(), m.config);
+  m.play(fleet, 30);
+  ASSERT_EQ(m.server.num_players(), 4);
+  fleet.disconnect_all();
+  m.play(fleet, 2);
+  EXPECT_EQ(m.server.num_players(), 0);
+}
+
+TEST(Bots, RealTimeRunAgainstAServerThread) {
+  // The path foresight-bots takes: bot_fleet_run's frame loop, epoll between frames, the stats
+  // request and the disconnect at the end, against a server ticking in real time.
+  Match m("maze", 4, bots::BotScript::kGoals);
+  m.config.seconds = 2.0;
+  std::thread server_thread([&] { m.server.run(); });
+  const bots::BotReport r = bots::bot_fleet_run(m.server.library(), m.config, nullptr);
+  std::this_thread::sleep_for(300ms);  // a few ticks to read the Disconnects
+  m.server.stop();
+  server_thread.join();
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.connected, 4);
+  EXPECT_GT(r.rtt_ms.count(), 20u);
+  EXPECT_LT(r.rtt_ms.percentile(0.5), 200.0);
+  EXPECT_GT(r.snapshot_interval_ms.count(), 20u);
+  EXPECT_TRUE(r.has_server_stats);
+  EXPECT_EQ(r.scene_collisions + r.avatar_contacts, 0u);
+  EXPECT_EQ(m.server.num_players(), 0) << "bot_fleet_run disconnects at the end";
+}
+
+}  // namespace
+}  // namespace foresight

@@ -1,0 +1,407 @@
+// ClientConnection against a scripted fake server on loopback, with an injected clock: the
+// handshake, Inputs with redundancy, idle heartbeats, snapshot merging, round-trip times,
+// refusals, timeouts and every kind of datagram the client must drop.
+#include "alloc_counter.hpp"
+#include "protocol/client_connection.hpp"
+#include "protocol/input_packet.hpp"
+
+#include <gtest/gtest.h>
+
+#include <poll.h>
+
+#include <vector>
+
+namespace foresight::protocol {
+namespace {
+
+using std::chrono::milliseconds;
+using TimePoint = ClientConnection::TimePoint;
+
+constexpr uint64_t kHash = 0x1122334455667788ull;
+
+/// The server end: a socket that reads what the client sends and answers by hand.
+class FakeServer {
+ public:
+  FakeServer() {
+    std::string error;
+    EXPECT_TRUE(socket_.open("127.0.0.1", 0, error)) << error;
+    EXPECT_TRUE(parse_endpoint("127.0.0.1:" + std::to_string(socket_.local_port()), endpoint_, error));
+  }
+  const Endpoint& endpoint() const { return endpoint_; }
+
+  /// The next datagram from the client (waits up to 1 s), or nullptr when none came.
+  const wire::Packet* receive() {
+    if (!socket_.wait_readable(1000)) return nullptr;
+    const ptrdiff_t n = socket_.receive(buffer_, client_);
+    if (n < 0) return nullptr;
+    DropReason reason = DropReason::kNone;
+    return packet_read({buffer_.data(), static_cast<size_t>(n)}, reason);
+  }
+  /// The next datagram of type T, skipping others; nullptr when none came.
+  template <typename T>
+  const T* receive_a() {
+    for (int i = 0; i < 64; ++i) {
+      const wire::Packet* p = receive();
+      if (p == nullptr) return nullptr;
+      if (const T* m = p->message_as<T>()) return m;
+    }
+    return nullptr;
+  }
+  /// True when the client sent nothing (within 50 ms).
+  bool silent() { return !socket_.wait_readable(50); }
+  void drain() {
+    while (socket_.wait_readable(20)) socket_.receive(buffer_, client_);
+  }
+  void send(std::span<const uint8_t> bytes) { socket_.send(bytes, client_); }
+  PacketWriter& writer() { return writer_; }
+
+  void send_challenge() {
+    const uint8_t cookie[8] = {9, 8, 7, 6, 5, 4, 3, 2};
+    auto& fbb = writer_.begin();
+    send(writer_.finish(wire::CreateChallenge(fbb, fbb.CreateVector(cookie, 8))));
+  }
+  void send_accept(uint32_t session, uint32_t avatar) {
+    auto& fbb = writer_.begin();
+    send(writer_.finish(wire::CreateAccept(fbb, session, avatar, fbb.CreateString("maze"),
+                                           fbb.CreateString("default"), kHash, 60, 20)));
+  }
+  void send_snapshot(uint32_t tick, uint8_t part, uint8_t parts, std::vector<uint32_t> ids,
+                     uint32_t ack_input = 0, uint32_t echo = 0) {
+    std::vector<wire::AvatarState> avatars;
+    for (uint32_t id : ids) avatars.emplace_back(id, 1000 * int32_t(id), -500, -1, 0, 0, 0, 0, 0);
+    auto& fbb = writer_.begin();
+    const auto list = fbb.CreateVectorOfStructs(avatars.data(), avatars.size());
+    send(writer_.finish(wire::CreateSnapshot(fbb, tick, part, parts, ack_input, echo, 0, list)));
+  }
+
+ private:
+  UdpSocket socket_;
+  Endpoint endpoint_;
+  Endpoint client_;
+  PacketWriter writer_;
+  std::array<uint8_t, 2048> buffer_{};
+};
+
+/// Waits until the client's socket has something, then polls it at the injected time.
+void deliver(ClientConnection& c, TimePoint now) {
+  pollfd p{c.socket_fd(), POLLIN, 0};
+  ::poll(&p, 1, 1000);
+  c.poll(now);
+}
+
+class ClientConnectionTest : public ::testing::Test {
+ protected:
+  TimePoint at(int ms) const { return t0_ + milliseconds(ms); }
+
+  /// start() and the whole handshake: the client is connected as session 5, avatar 3, at 100 ms.
+  void connect() {
+    ASSERT_TRUE(client_.start(server_.endpoint(), kHash, "bot-0", at(0)));
+    ASSERT_NE(server_.receive_a<wire::ConnectRequest>(), nullptr);
+    server_.send_challenge();
+    deliver(client_, at(50));
+    ASSERT_NE(server_.receive_a<wire::ConnectResponse>(), nullptr);
+    server_.send_accept(5, 3);
+    deliver(client_, at(100));
+    ASSERT_EQ(client_.state(), ClientState::kConnected) << client_.status_message();
+  }
+
+  const TimePoint t0_ = ClientConnection::Clock::now();
+  FakeServer server_;
+  ClientConnection client_;
+};
+
+TEST_F(ClientConnectionTest, HandshakeResendsUntilAnsweredThenConnects) {
+  ASSERT_TRUE(client_.start(server_.endpoint(), kHash, "bot-0", at(0)));
+  EXPECT_EQ(client_.state(), ClientState::kConnecting);
+  const auto* request = server_.receive_a<wire::ConnectRequest>();
+  ASSERT_NE(request, nullptr);
+  EXPECT_EQ(request->protocol(), kProtocolVersion);
+  EXPECT_EQ(request->library_hash(), kHash);
+  EXPECT_EQ(request->client_name()->str(), "bot-0");
+
+  client_.flush(at(100));
+  EXPECT_TRUE(server_.silent()) << "resent before 250 ms";
+  client_.flush(at(260));
+  EXPECT_NE(server_.receive_a<wire::ConnectRequest>(), nullptr) << "not resent after 250 ms";
+
+  server_.send_challenge();
+  deliver(client_, at(300));
+  const auto* response = server_.receive_a<wire::ConnectResponse>();
+  ASSERT_NE(response, nullptr) << "the challenge is answered at once";
+  ASSERT_EQ(response->cookie()->size(), 8u);
+  EXPECT_EQ(response->cookie()->Get(0), 9);
+  EXPECT_EQ(response->library_hash(), kHash);
+  client_.flush(at(560));
+  EXPECT_NE(server_.receive_a<wire::ConnectResponse>(), nullptr) << "response resent";
+
+  server_.send_accept(5, 3);
+  deliver(client_, at(600));
+  ASSERT_EQ(client_.state(), ClientState::kConnected);
+  EXPECT_EQ(client_.accept().session, 5u);
+  EXPECT_EQ(client_.accept().avatar, 3u);
+  EXPECT_EQ(client_.accept().scene, "maze");
+  EXPECT_EQ(client_.accept().snapshot_hz, 20);
+  EXPECT_NE(client_.status_message().find("session 5"), std::string::npos);
+
+  server_.send_accept(5, 3);  // answer to a resent response: harmless
+  deliver(client_, at(610));
+  EXPECT_EQ(client_.state(), ClientState::kConnected);
+  EXPECT_EQ(client_.drops().total(), 0u);
+}
+
+TEST_F(ClientConnectionTest, InputsRepeatTheLastCommandsNewestLast) {
+  connect();
+  ControlInput forward;
+  forward.camera_dir = vec2(0.0f, 1.0f);
+  forward.camera_yaw_rad = 1.0f;
+  client_.set_input(forward);
+  const wire::Input* input = nullptr;
+  for (int frame = 1; frame <= 10; ++frame) {
+    client_.flush(at(100 + 33 * frame));
+    input = server_.receive_a<wire::Input>();
+    ASSERT_NE(input, nullptr) << "frame " << frame;
+    EXPECT_EQ(input->session(), 5u);
+    const size_t expected = std::min(frame, kInputRedundancy);
+    ASSERT_EQ(input->commands()->size(), expected);
+    EXPECT_EQ(input->commands()->Get(static_cast<uint32_t>(expected - 1))->sequence(),
+              static_cast<uint32_t>(frame));
+    EXPECT_EQ(input->commands()->Get(0)->sequence(), static_cast<uint32_t>(frame - expected + 1));
+  }
+  const ControlInput decoded = control_input_from_command(*input->commands()->Get(7));
+  EXPECT_NEAR(decoded.camera_dir.y, 1.0f, 1e-6f);
+  EXPECT_NEAR(decoded.camera_yaw_rad, 1.0f, 1e-4f);
+  EXPECT_EQ(client_.inputs_sent(), 10u);
+  EXPECT_EQ(client_.input_sequence(), 10u);
+
+  // ack_snapshot follows the newest snapshot tick.
+  server_.send_snapshot(77, 0, 1, {3});
+  deliver(client_, at(500));
+  client_.flush(at(510));
+  input = server_.receive_a<wire::Input>();
+  ASSERT_NE(input, nullptr);
+  EXPECT_EQ(input->ack_snapshot(), 77u);
+}
+
+TEST_F(ClientConnectionTest, IdleClientSendsOnlyHeartbeats) {
+  connect();
+  client_.set_input(ControlInput{});  // stop
+  client_.flush(at(133));
+  ASSERT_NE(server_.receive_a<wire::Input>(), nullptr) << "the first stop is sent";
+  client_.flush(at(166));
+  ASSERT_NE(server_.receive_a<wire::Input>(), nullptr) << "not idle until the server acks";
+  server_.send_snapshot(1, 0, 1, {3}, /*ack_input=*/2);
+  deliver(client_, at(180));
+  server_.drain();
+  client_.flush(at(200));
+  client_.flush(at(900));
+  EXPECT_TRUE(server_.silent()) << "idle: nothing new to say";
+  server_.send_snapshot(2, 0, 1, {3}, 2);  // keeps the server "heard from"
+  deliver(client_, at(1000));
+  client_.flush(at(1170));
+  const auto* hb = server_.receive_a<wire::Heartbeat>();
+  ASSERT_NE(hb, nullptr) << "a heartbeat once a second while idle";
+  EXPECT_EQ(hb->session(), 5u);
+
+  ControlInput left;
+  left.camera_dir = vec2(-1.0f, 0.0f);
+  client_.set_input(left);
+  client_.flush(at(1200));
+  const auto* input = server_.receive_a<wire::Input>();
+  ASSERT_NE(input, nullptr) << "a new input ends the idle time";
+  EXPECT_EQ(input->commands()->Get(input->commands()->size() - 1)->sequence(), 3u);
+}
+
+TEST_F(ClientConnectionTest, SnapshotPartsMergeAndANewerTickReplaces) {
+  connect();
+  server_.send_snapshot(10, 0, 2, {1, 2});
+  deliver(client_, at(200));
+  EXPECT_TRUE(client_.has_snapshot());
+  EXPECT_EQ(client_.snapshot_tick(), 10u);
+  EXPECT_EQ(client_.avatars().size(), 2u);
+  EXPECT_EQ(client_.own_avatar(), nullptr);
+
+  server_.send_snapshot(10, 1, 2, {3});
+  server_.send_snapshot(10, 1, 2, {3});  // duplicated datagram
+  server_.send_snapshot(9, 0, 1, {1});   // late older tick
+  deliver(client_, at(210));
+  EXPECT_EQ(client_.snapshot_tick(), 10u);
+  EXPECT_EQ(client_.snapshot_parts(), 2);
+  EXPECT_EQ(client_.snapshot_parts_received(), 2);
+  ASSERT_EQ(client_.avatars().size(), 3u);
+  ASSERT_NE(client_.own_avatar(), nullptr);
+  EXPECT_EQ(client_.own_avatar()->id(), 3u);
+  EXPECT_EQ(client_.own_avatar()->start_x_mm(), 3000);
+  EXPECT_EQ(client_.own_avatar_tick(), 10u);
+
+  server_.send_snapshot(13, 1, 2, {4, 5});
+  deliver(client_, at(260));
+  EXPECT_EQ(client_.snapshot_tick(), 13u);
+  EXPECT_EQ(client_.avatars().size(), 2u);
+  EXPECT_EQ(client_.snapshot_parts_received(), 1);
+  ASSERT_NE(client_.own_avatar(), nullptr) << "the last seen own state is kept";
+  EXPECT_EQ(client_.own_avatar_tick(), 10u);
+  EXPECT_EQ(client_.snapshot_ticks(), 2u);
+  EXPECT_EQ(client_.snapshot_interval_ms().count(), 1u);
+  EXPECT_NEAR(client_.snapshot_interval_ms().max(), 60.0, 1e-9);
+  EXPECT_EQ(client_.drops().total(), 0u);
+}
+
+TEST_F(ClientConnectionTest, RoundTripIsMeasuredFromTheEcho) {
+  connect();
+  client_.flush(at(1000));
+  const auto* input = server_.receive_a<wire::Input>();
+  ASSERT_NE(input, nullptr);
+  const uint32_t sent_ms = input->client_time_ms();
+  EXPECT_NE(sent_ms, 0u);
+  server_.send_snapshot(1, 0, 1, {3}, 0, sent_ms);
+  deliver(client_, at(1040));
+  ASSERT_EQ(client_.rtt_ms().count(), 1u);
+  EXPECT_NEAR(client_.last_rtt_ms(), 40.0, 1e-9);
+  server_.send_snapshot(2, 0, 1, {3}, 0, sent_ms);  // the same echo again: no new sample
+  deliver(client_, at(1090));
+  EXPECT_EQ(client_.rtt_ms().count(), 1u);
+}
+
+TEST_F(ClientConnectionTest, RefusalIsFinalAndExplained) {
+  ASSERT_TRUE(client_.start(server_.endpoint(), kHash, "bot-0", at(0)));
+  ASSERT_NE(server_.receive_a<wire::ConnectRequest>(), nullptr);
+  auto& w = server_.writer();
+  auto& fbb = w.begin();
+  server_.send(w.finish(wire::CreateRefuse(fbb, wire::RefuseReason::Library,
+                                           fbb.CreateString("motion library differs"), 0xabcdefull)));
+  deliver(client_, at(30));
+  EXPECT_EQ(client_.state(), ClientState::kRefused);
+  EXPECT_EQ(client_.refuse().reason, wire::RefuseReason::Library);
+  EXPECT_EQ(client_.refuse().server_library_hash, 0xabcdefull);
+  const std::string& why = client_.status_message();
+  EXPECT_NE(why.find("motion library differs"), std::string::npos) << why;
+  EXPECT_NE(why.find("1122334455667788"), std::string::npos) << why;
+  EXPECT_NE(why.find("0000000000abcdef"), std::string::npos) << why;
+  server_.drain();
+  client_.flush(at(1000));
+  EXPECT_TRUE(server_.silent()) << "a refused client stops sending";
+}
+
+TEST_F(ClientConnectionTest, HandshakeTimesOutAfterFiveSeconds) {
+  ASSERT_TRUE(client_.start(server_.endpoint(), kHash, "bot-0", at(0)));
+  client_.update(at(4999));
+  EXPECT_EQ(client_.state(), ClientState::kConnecting);
+  client_.update(at(5000));
+  EXPECT_EQ(client_.state(), ClientState::kTimedOut);
+  EXPECT_NE(client_.status_message().find("no answer"), std::string::npos);
+}
+
+TEST_F(ClientConnectionTest, SilentServerIsGoneAfterFiveSeconds) {
+  connect();
+  client_.update(at(5099));
+  EXPECT_EQ(client_.state(), ClientState::kConnected);
+  client_.update(at(5100));
+  EXPECT_EQ(client_.state(), ClientState::kServerGone);
+}
+
+TEST_F(ClientConnectionTest, ServerCanEndTheSession) {
+  connect();
+  PacketWriter w;
+  server_.send(write_disconnect(w, 5));
+  deliver(client_, at(200));
+  EXPECT_EQ(client_.state(), ClientState::kServerGone);
+}
+
+TEST_F(ClientConnectionTest, BadDatagramsAreDroppedByReason) {
+  connect();
+  const uint8_t garbage[40] = {1, 2, 3};
+  server_.send(garbage);
+  deliver(client_, at(200));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kBadIdentifier)], 1u);
+
+  std::vector<uint8_t> huge(1500, 0);
+  server_.send(huge);
+  deliver(client_, at(210));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kTooLarge)], 1u);
+
+  server_.send_challenge();  // not expected once connected
+  deliver(client_, at(220));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kUnexpected)], 1u);
+
+  server_.send_snapshot(5, 2, 2, {1});  // part out of range
+  deliver(client_, at(230));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kInvalidInput)], 1u);
+  EXPECT_FALSE(client_.has_snapshot());
+
+  // A stranger who learned the port: dropped whatever it sends.
+  UdpSocket stranger;
+  std::string error;
+  ASSERT_TRUE(stranger.open("127.0.0.1", 0, error));
+  Endpoint client_endpoint;
+  ASSERT_TRUE(parse_endpoint("127.0.0.1:" + std::to_string(client_.local_port()), client_endpoint, error));
+  PacketWriter w;
+  stranger.send(write_disconnect(w, 5), client_endpoint);
+  deliver(client_, at(240));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kUnexpected)], 2u);
+  EXPECT_EQ(client_.state(), ClientState::kConnected);
+  EXPECT_EQ(client_.drops().total(), 5u);
+}
+
+TEST_F(ClientConnectionTest, StatsAndDisconnect) {
+  connect();
+  client_.request_stats();
+  const auto* request = server_.receive_a<wire::StatsRequest>();
+  ASSERT_NE(request, nullptr);
+  EXPECT_EQ(request->session(), 5u);
+  auto& w = server_.writer();
+  auto& fbb = w.begin();
+  wire::ServerStatsBuilder b(fbb);
+  b.add_tick(900);
+  b.add_tick_ms_p99(3.5f);
+  b.add_overruns(2);
+  b.add_tree_size_mean(123.0f);
+  server_.send(w.finish(b.Finish()));
+  deliver(client_, at(200));
+  ASSERT_EQ(client_.server_stats_count(), 1u);
+  EXPECT_EQ(client_.server_stats().tick, 900u);
+  EXPECT_FLOAT_EQ(client_.server_stats().tick_ms_p99, 3.5f);
+  EXPECT_EQ(client_.server_stats().overruns, 2u);
+  EXPECT_FLOAT_EQ(client_.server_stats().tree_size_mean, 123.0f);
+
+  client_.disconnect();
+  EXPECT_EQ(client_.state(), ClientState::kClosed);
+  int disconnects = 0;
+  while (const auto* d = server_.receive_a<wire::Disconnect>()) {
+    EXPECT_EQ(d->session(), 5u);
+    ++disconnects;
+  }
+  EXPECT_EQ(disconnects, 3);
+}
+
+TEST(AllocationCount, SeesAnAllocation) {
+  test::AllocationCount counting;
+  std::vector<int> v(static_cast<size_t>(counting.allocations() + 100));
+  EXPECT_GE(counting.allocations(), 1) << v.size();
+}
+
+TEST_F(ClientConnectionTest, AWarmConnectionAllocatesNothingPerPacket) {
+  connect();
+  ControlInput input;
+  input.camera_dir = vec2(0.0f, 1.0f);
+  int allocations = 0;
+  auto frame = [&](int i, bool count) {
+    server_.send_snapshot(static_cast<uint32_t>(10 + i), 0, 2, {1, 2, 3}, static_cast<uint32_t>(i), 0);
+    server_.send_snapshot(static_cast<uint32_t>(10 + i), 1, 2, {4, 5});
+    pollfd p{client_.socket_fd(), POLLIN, 0};
+    ::poll(&p, 1, 1000);
+    input.camera_yaw_rad = 0.01f * static_cast<float>(i);
+    test::AllocationCount counting(count);
+    client_.set_input(input);
+    client_.update(at(200 + 33 * i));
+    if (count) allocations += counting.allocations();
+    server_.drain();
+  };
+  for (int i = 0; i < 5; ++i) frame(i, false);  // warm up
+  for (int i = 5; i < 50; ++i) frame(i, true);
+  EXPECT_EQ(allocations, 0);
+  EXPECT_EQ(client_.snapshot_ticks(), 50u);
+  EXPECT_EQ(client_.inputs_sent(), 50u);
+}
+
+}  // namespace
+}  // namespace foresight::protocol
