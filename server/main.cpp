@@ -43,6 +43,9 @@ int main(int argc, char** argv) {
   std::string strategy = "command";
   app.add_option("--strategy", strategy, "Exploration strategy: " + strategy_names())->capture_default_str();
   app.add_option("--tree-nodes", config.tree_max_nodes, "Tree node cap per avatar")->check(CLI::Range(16, 1 << 20))->capture_default_str();
+  app.add_option("--resort-ticks", config.resort_interval_ticks,
+                 "Re-prioritise trees at least every N ticks (also on command change and before decisions)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--tree-depth", config.tree_max_depth, "Tree depth cap")->check(CLI::Range(1, 64))->capture_default_str();
   app.add_option("--max-packets-per-s", config.max_packets_per_s, "Per-session packet rate limit")
       ->check(CLI::Range(1, 100000))->capture_default_str();

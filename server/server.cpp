@@ -21,6 +21,8 @@ struct Server::Player {
   Clock::time_point last_heard{};
   bool any_input = false;
   uint32_t last_input_seq = 0;  ///< Newest command applied.
+  ControlInput input;  ///< The command the player holds (applied in the look-ahead phase).
+  bool input_changed = true;
   uint32_t ack_snapshot = 0;
   uint32_t echo_client_time_ms = 0;
   double tokens = 0;            ///< Packet rate limit (token bucket).
@@ -35,6 +37,15 @@ double ms_between(Clock::time_point a, Clock::time_point b) {
 
 bool same_endpoint(const protocol::Endpoint& a, const protocol::Endpoint& b) {
   return a.address() == b.address() && a.port() == b.port();
+}
+
+// A hash key for the player table (IPv4: exact; IPv6: hashed, confirmed by same_endpoint).
+uint64_t endpoint_key(const protocol::Endpoint& e) {
+  std::array<uint8_t, 16> storage;
+  const auto bytes = protocol::endpoint_address_bytes(e, storage);
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  return (h << 16) ^ e.port();
 }
 
 // Frames of clip time due at the end of tick `tick` (clips play in real time at `fps` whatever the
@@ -54,6 +65,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   config_.snapshot_hz = std::clamp(config_.snapshot_hz, 1, config_.tick_hz);
   if (config_.threads <= 0) config_.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   config_.threads = std::clamp(config_.threads, 1, 64);
+  config_.resort_interval_ticks = std::max(config_.resort_interval_ticks, 1);
   if (!scene_world_load(config_.scene, scene_, world_, error)) return false;
   if (!motion_library_load(config_.motions, library_, error)) return false;
   spawn_segment_ = find_spawn_segment(library_);
@@ -112,16 +124,34 @@ void Server::run_tick(Clock::time_point now) {
   const Clock::time_point tick_start = Clock::now();
   ++tick_;
   challenges_this_tick_ = 0;
+  joins_this_tick_ = 0;
+  TickRecord record;
   receive(now);
   expire(now);
+  const Clock::time_point received = Clock::now();
+  record.receive_ms = static_cast<float>(ms_between(tick_start, received));
+  // Look ahead, then decide: the avatar's order of LookaheadAvatar (set_input, grow, step).
+  grow_trees(tick_start, received, record);
+  const Clock::time_point grown = Clock::now();
   advance();
-  TickRecord record;
-  grow_trees(tick_start, Clock::now(), record);
+  const Clock::time_point advanced = Clock::now();
+  record.advance_ms = static_cast<float>(ms_between(grown, advanced));
   send_snapshots(now);
   check_contacts();
+  record.send_ms = static_cast<float>(ms_between(advanced, Clock::now()));
+  tail_ms_estimate_ = 0.9 * tail_ms_estimate_ + 0.1 * (record.advance_ms + record.send_ms);
   record.players = num_players();
   record.tick_ms = static_cast<float>(ms_between(tick_start, Clock::now()));
-  stats_.record(record, record.tick_ms > 1000.0f / static_cast<float>(config_.tick_hz));
+  const bool overrun = record.tick_ms > 1000.0f / static_cast<float>(config_.tick_hz);
+  stats_.record(record, overrun);
+  if (overrun && tick_ >= next_overrun_log_tick_) {  // at most one line a second
+    next_overrun_log_tick_ = tick_ + static_cast<uint32_t>(config_.tick_hz);
+    std::fprintf(stderr,
+                 "foresight-server: tick %u overran: %.1f ms (receive %.1f, look-ahead %.1f of %.1f, advance %.1f, "
+                 "send %.1f), %d players, %llu overruns so far\n",
+                 tick_, record.tick_ms, record.receive_ms, record.lookahead_ms, record.budget_ms, record.advance_ms,
+                 record.send_ms, record.players, static_cast<unsigned long long>(stats_.overruns()));
+  }
   const auto status_ticks = static_cast<uint32_t>(config_.status_every_s * config_.tick_hz);
   if (status_ticks > 0 && tick_ % status_ticks == 0) log_status();
 }
@@ -129,11 +159,12 @@ void Server::run_tick(Clock::time_point now) {
 void Server::log_status() const {
   const TickRecord mean = stats_.mean();
   std::fprintf(stderr,
-               "foresight-server: tick %u, %d players; tick ms p50 %.2f p99 %.2f, %llu overruns; look-ahead "
-               "%.1f of %.1f ms, %lld expansions/tick, tree size mean %.0f min %d; %llu packets in, %llu "
-               "dropped; %llu avatar contacts\n",
+               "foresight-server: tick %u, %d players; tick ms p50 %.2f p99 %.2f, %llu overruns; mean ms: "
+               "receive %.2f, look-ahead %.1f of %.1f, advance %.2f, send %.2f; %lld expansions/tick, tree "
+               "size mean %.0f min %d; %llu packets in, %llu dropped; %llu avatar contacts\n",
                tick_, num_players(), stats_.tick_ms_percentile(50), stats_.tick_ms_percentile(99),
-               static_cast<unsigned long long>(stats_.overruns()), mean.lookahead_ms, mean.budget_ms,
+               static_cast<unsigned long long>(stats_.overruns()), mean.receive_ms, mean.lookahead_ms,
+               mean.budget_ms, mean.advance_ms, mean.send_ms,
                static_cast<long long>(mean.expansions), mean.tree_size_mean, mean.tree_size_min,
                static_cast<unsigned long long>(counters_.packets_in),
                static_cast<unsigned long long>(counters_.drops.total()),
@@ -163,9 +194,8 @@ void Server::receive(Clock::time_point now) {
 }
 
 Server::Player* Server::find_player(const protocol::Endpoint& from) {
-  for (auto& p : players_)
-    if (same_endpoint(p->endpoint, from)) return p.get();
-  return nullptr;
+  const auto it = by_endpoint_.find(endpoint_key(from));
+  return it != by_endpoint_.end() && same_endpoint(it->second->endpoint, from) ? it->second : nullptr;
 }
 
 void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, size_t bytes,
@@ -276,6 +306,11 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
     send_refuse(from, wire::RefuseReason::Library, text);
     return;
   }
+  if (joins_this_tick_ >= config_.max_joins_per_tick) {
+    ++counters_.joins_deferred;  // the client repeats its response every 250 ms
+    return;
+  }
+  ++joins_this_tick_;
   Placement spawn;
   if (num_players() >= config_.max_players || !find_spawn(spawn)) {
     send_refuse(from, wire::RefuseReason::ServerFull,
@@ -298,6 +333,7 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
   std::fprintf(stderr, "foresight-server: player %u '%s' joined from %s:%u (session %u, %d players)\n",
                p->avatar_id, p->name.c_str(), from.address().to_string().c_str(), from.port(), p->session,
                num_players() + 1);
+  by_endpoint_[endpoint_key(from)] = p.get();
   players_.push_back(std::move(p));
 }
 
@@ -314,7 +350,12 @@ void Server::on_input(Player& p, const wire::Input& m) {
   // Older ones in the packet were either applied already or superseded.
   const wire::InputCommand* newest = commands->Get(commands->size() - 1);
   if (p.any_input && static_cast<int32_t>(newest->sequence() - p.last_input_seq) <= 0) return;
-  p.avatar->set_input(protocol::control_input_from_command(*newest));
+  const ControlInput in = protocol::control_input_from_command(*newest);
+  if (in.camera_dir != p.input.camera_dir || in.camera_yaw_rad != p.input.camera_yaw_rad ||
+      in.crouch != p.input.crouch) {
+    p.input = in;
+    p.input_changed = true;
+  }
   p.last_input_seq = newest->sequence();
   p.any_input = true;
 }
@@ -429,7 +470,11 @@ void Server::expire(Clock::time_point now) {
 void Server::remove_player(size_t index) {
   std::fprintf(stderr, "foresight-server: player %u left (%d players)\n", players_[index]->avatar_id,
                num_players() - 1);
-  players_.erase(players_.begin() + static_cast<ptrdiff_t>(index));
+  by_endpoint_.erase(endpoint_key(players_[index]->endpoint));
+  // Swap with the last: O(1), and the order of the others (which decides who commits first in a
+  // tick) stays deterministic.
+  std::swap(players_[index], players_.back());
+  players_.pop_back();
 }
 
 bool Server::find_spawn(Placement& out) const {
@@ -478,12 +523,16 @@ void Server::advance() {
 
 void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record) {
   const size_t n = players_.size();
-  if (n == 0) return;
+  if (n == 0) {
+    record.tree_size_min = -1;  // no players: not part of the tree figures
+    return;
+  }
   const double period_ms = 1000.0 / config_.tick_hz;
-  // What the tick leaves: the period minus what was spent so far and a margin for the rest of the
-  // tick (snapshots), capped.
-  const double budget_ms = std::clamp(period_ms - ms_between(tick_start, now) - config_.tick_safety_margin_ms, 0.0,
-                                      config_.lookahead_budget_ms);
+  // What the tick leaves: the period minus what was spent so far, what the rest of the tick
+  // (advance, snapshots) took lately, and the safety margin; capped.
+  const double budget_ms = std::clamp(
+      period_ms - ms_between(tick_start, now) - tail_ms_estimate_ - config_.tick_safety_margin_ms, 0.0,
+      config_.lookahead_budget_ms);
   record.budget_ms = static_cast<float>(budget_ms);
   // Shared by need: a thin tree or a decision coming soon asks for more.
   grow_weight_.resize(n);
@@ -502,13 +551,27 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
   const double per_weight_ms = budget_ms * workers / total;
   const Clock::time_point end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
   workers_->run(static_cast<int>(n), [&](int item, int) {
-    LookaheadAvatar& a = *players_[static_cast<size_t>(item)]->avatar;
+    Player& p = *players_[static_cast<size_t>(item)];
+    LookaheadAvatar& a = *p.avatar;
+    // Command matching measures v_k from where the avatar stands and strategies 1 and 4 re-sort
+    // the leaves (about 25 ns a node): at once when the command changes, just before a decision,
+    // and otherwise every resort_interval_ticks (1 = every tick, as the lab's replay does every
+    // frame). On the look-ahead threads, never per packet.
+    // The periodic re-sort is the first thing dropped when the tick runs late.
     GrowBudget budget;
-    if (config_.expansions_per_avatar > 0) {
-      budget = GrowBudget::expansions(config_.expansions_per_avatar);
-    } else {
+    const bool timed = config_.expansions_per_avatar <= 0;
+    if (timed) {
       const auto slice = std::chrono::duration<double, std::milli>(per_weight_ms * grow_weight_[static_cast<size_t>(item)]);
       budget = GrowBudget::until(std::min(end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
+    } else {
+      budget = GrowBudget::expansions(config_.expansions_per_avatar);
+    }
+    const int frames_left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() -
+                            a.playback().frame;
+    const bool periodic = (tick_ + p.avatar_id) % config_.resort_interval_ticks == 0 && (!timed || Clock::now() < end);
+    if (p.input_changed || frames_left <= 1 || periodic) {
+      a.set_input(p.input);
+      p.input_changed = false;
     }
     grow_expansions_[static_cast<size_t>(item)] = a.grow(budget).expansions;
   });

@@ -28,6 +28,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace foresight::server {
@@ -44,6 +45,7 @@ struct ServerCounters {
   uint64_t challenges_sent = 0;
   uint64_t challenges_capped = 0;   ///< Connect requests ignored: over max_challenges_per_tick.
   uint64_t sessions_opened = 0;
+  uint64_t joins_deferred = 0;      ///< Cookie-checked joins left for a later tick (max_joins_per_tick).
   uint64_t sessions_timed_out = 0;
   uint64_t sessions_closed = 0;     ///< Clean disconnects.
   uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
@@ -116,6 +118,7 @@ class Server {
   protocol::PacketWriter writer_;
   std::vector<uint8_t> receive_buffer_;
   std::vector<std::unique_ptr<Player>> players_;
+  std::unordered_map<uint64_t, Player*> by_endpoint_;  ///< endpoint_key -> player
   Reservations reservations_;
   std::unique_ptr<LookaheadWorkers> workers_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
@@ -130,6 +133,9 @@ class Server {
   double snapshot_accumulator_ = 0;
   uint32_t snapshot_tick_ = 0;
   int challenges_this_tick_ = 0;
+  int joins_this_tick_ = 0;
+  double tail_ms_estimate_ = 0;
+  uint32_t next_overrun_log_tick_ = 0;  ///< Recent advance + send time (EMA), kept out of the budget.
   ServerCounters counters_;
   TickStats stats_;
   std::atomic<bool> stop_requested_{false};

@@ -19,21 +19,27 @@ struct ServerConfig {
   double session_timeout_s = 5.0;  ///< A client silent this long is dropped, its avatar removed.
   /// Look-ahead budget per tick: what the tick period leaves after the rest of the tick, minus the
   /// safety margin, at most this much (ms of wall-clock per tick, across all threads).
-  double lookahead_budget_ms = 20.0;
-  double tick_safety_margin_ms = 4.0;
+  double lookahead_budget_ms = 12.0;
+  double tick_safety_margin_ms = 6.0;
   /// Deterministic mode (tests, experiments): > 0 grows every tree by exactly this many
   /// expansions per tick instead of a time budget; 0 uses time.
   int64_t expansions_per_avatar = 0;
   int threads = 0;                 ///< Look-ahead threads, the tick thread included (0: one per core).
   double status_every_s = 10.0;    ///< A status line in the log this often (0: never).
   Strategy strategy = Strategy::kCommand;
-  int tree_max_nodes = 2048;       ///< Per avatar (64 B per node).
+  int tree_max_nodes = 8192;       ///< Per avatar (about 64 B per node).
+  /// Trees are re-prioritised when the command changes, before each decision, and at least every
+  /// this many ticks (1: every tick, the lab's replay semantics).
+  int resort_interval_ticks = 4;
   int tree_max_depth = 8;
   /// Per session: more packets than this per second are dropped (counted); input commands come
   /// at most at the client's frame rate.
   int max_packets_per_s = 120;
   /// Challenges answered per tick at most (a connect flood cannot eat the tick).
   int max_challenges_per_tick = 256;
+  /// New players admitted per tick at most (creating an avatar and finding it a free spawn place
+  /// costs about a millisecond); the others are admitted on their client's next try.
+  int max_joins_per_tick = 4;
   MotionSource motions;            ///< Default library, or --motions DIR.
 };
 

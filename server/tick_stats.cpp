@@ -31,21 +31,28 @@ float TickStats::tick_ms_max() const {
 TickRecord TickStats::mean() const {
   TickRecord m;
   if (count_ == 0) return m;
-  double tick = 0, budget = 0, look = 0, exp = 0, size = 0, players = 0;
-  int size_min = 0;
+  double tick = 0, budget = 0, look = 0, exp = 0, size = 0, players = 0, rec = 0, adv = 0, snd = 0;
+  int size_min = -1, with_players = 0;
   for (int i = 0; i < count_; ++i) {
     const TickRecord& r = ring_[static_cast<size_t>(i)];
     tick += r.tick_ms, budget += r.budget_ms, look += r.lookahead_ms;
-    exp += static_cast<double>(r.expansions), size += r.tree_size_mean, players += r.players;
-    size_min = i == 0 ? r.tree_size_min : std::min(size_min, r.tree_size_min);
+    rec += r.receive_ms, adv += r.advance_ms, snd += r.send_ms;
+    exp += static_cast<double>(r.expansions), players += r.players;
+    if (r.tree_size_min < 0) continue;  // a tick without players
+    ++with_players;
+    size += r.tree_size_mean;
+    size_min = size_min < 0 ? r.tree_size_min : std::min(size_min, r.tree_size_min);
   }
   const double n = count_;
   m.tick_ms = static_cast<float>(tick / n);
   m.budget_ms = static_cast<float>(budget / n);
   m.lookahead_ms = static_cast<float>(look / n);
+  m.receive_ms = static_cast<float>(rec / n);
+  m.advance_ms = static_cast<float>(adv / n);
+  m.send_ms = static_cast<float>(snd / n);
   m.expansions = static_cast<int64_t>(exp / n);
-  m.tree_size_mean = static_cast<float>(size / n);
-  m.tree_size_min = size_min;
+  m.tree_size_mean = with_players > 0 ? static_cast<float>(size / with_players) : 0.0f;
+  m.tree_size_min = std::max(size_min, 0);
   m.players = static_cast<int>(players / n);
   return m;
 }

@@ -10,8 +10,11 @@ struct TickRecord {
   float tick_ms = 0;        ///< Work done in the tick (not the sleep).
   float budget_ms = 0;      ///< Look-ahead budget granted.
   float lookahead_ms = 0;   ///< Look-ahead time spent (tick thread wall-clock).
+  float receive_ms = 0;     ///< Draining the socket and expiring sessions.
+  float advance_ms = 0;     ///< Playing frames and deciding (reservations included).
+  float send_ms = 0;        ///< Snapshots and the contact check.
   int64_t expansions = 0;
-  int tree_size_min = 0;
+  int tree_size_min = 0;    ///< -1: no players this tick.
   float tree_size_mean = 0;
   int players = 0;
 };

@@ -19,6 +19,7 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
 }
 
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
+  priorities_stale_ = false;
   for (int i = 0; i < config_.max_nodes; ++i)
     nodes_[static_cast<size_t>(i)].next_sibling = i + 1 < config_.max_nodes ? i + 1 : -1;
   free_head_ = 0;
@@ -118,8 +119,16 @@ void MotionTree::set_command(vec2 world_direction, const Placement& avatar) {
   command_ = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
   avatar_ = avatar;
   refresh_priorities();
-  if (config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid)
+  if (priorities_stale_ || config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid)
     rebuild_queue();
+  priorities_stale_ = false;
+}
+
+void MotionTree::update_priorities_if_stale() {
+  if (!priorities_stale_) return;
+  refresh_priorities();
+  rebuild_queue();
+  priorities_stale_ = false;
 }
 
 void MotionTree::refresh_priorities() {
@@ -148,6 +157,7 @@ void MotionTree::rebuild_queue() {
 }
 
 GrowResult MotionTree::grow(const GrowBudget& budget) {
+  update_priorities_if_stale();
   GrowResult result;
   const bool has_deadline = budget.deadline != std::chrono::steady_clock::time_point::max();
   while (true) {
@@ -208,7 +218,8 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
   return result;
 }
 
-int MotionTree::select_child(const ChildVeto* veto) const {
+int MotionTree::select_child(const ChildVeto* veto) {
+  update_priorities_if_stale();
   const auto& w = config_.selection_weights;
   int best = -1;
   float best_sum = -1.0f;
@@ -255,8 +266,7 @@ int MotionTree::advance_root(int child) {
   r.next_sibling = -1;
   // Depths are relative to the root, so the depth cap keeps looking the same distance ahead.
   for_each_node([&](int index, const MotionTreeNode&) { --nodes_[static_cast<size_t>(index)].depth; });
-  refresh_priorities();
-  rebuild_queue();
+  priorities_stale_ = true;
   return r.transition;
 }
 

@@ -129,10 +129,13 @@ class MotionTree {
   /// The child of the root with the largest weighted branch sum under the current command, or -1
   /// when the root has no feasible child (none that `veto` lets through). Ties go to the earlier
   /// child.
-  int select_child(const ChildVeto* veto = nullptr) const;
+  int select_child(const ChildVeto* veto = nullptr);
 
   /// Makes `child` (a child of the root) the root and frees every other branch. Returns the graph
-  /// transition that enters it.
+  /// transition that enters it. Priorities (products from the root) and the leaf queue are
+  /// brought up to date lazily, by the next set_command(), grow() or select_child(): the server
+  /// decides for every avatar in one sequential pass and grows them on several threads, and this
+  /// puts the re-prioritising on those threads. The result is the same as doing it here.
   int advance_root(int child);
 
   int root() const { return root_; }
@@ -178,6 +181,7 @@ class MotionTree {
   float grow_priority_of(const MotionTreeNode& n, float parent_grow) const;
   void refresh_priorities();  // recompute match (and re-sorting grow priorities) top-down
   void rebuild_queue();
+  void update_priorities_if_stale();
 
   const MotionLibrary& library_;
   const CollisionWorld& world_;
@@ -190,6 +194,7 @@ class MotionTree {
   int free_head_ = -1;
   int num_nodes_ = 0;
   int root_ = -1;
+  bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
   uint32_t next_order_ = 0;
   static constexpr float kWalkingPace_mps = 1.2f;  // at or above it a motion gets full pace credit
   vec2 command_{0.0f};

@@ -45,13 +45,14 @@ TEST(Server, HandshakeGivesASessionAndAnAvatarInSnapshots) {
 }
 
 TEST(Server, InputMovesTheAvatarAndSnapshotsFollowIt) {
-  Running r;
+  Running r("arena");  // open ground: the command can be followed straight away
   RawClient c(r.server.port());
   ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
   const vec2 start = r.server.avatar(c.avatar)->root().pos_m;
   uint32_t seq = 1;
-  for (int i = 0; i < 90; ++i) {  // 3 s holding "forward" (camera yaw 0: world +Z)
-    c.send_input(vec2(0.0f, 1.0f), seq++);
+  const float facing = r.server.avatar(c.avatar)->root().heading_rad;
+  for (int i = 0; i < 90; ++i) {  // 3 s holding "forward", the camera behind the avatar
+    c.send_input(vec2(0.0f, 1.0f), seq++, facing);
     r.ticks(1);
   }
   const Placement root = r.server.avatar(c.avatar)->root();
