@@ -119,6 +119,7 @@ class Server {
   std::vector<uint8_t> receive_buffer_;
   std::vector<std::unique_ptr<Player>> players_;
   std::unordered_map<uint64_t, Player*> by_endpoint_;  ///< endpoint_key -> player
+  std::vector<std::unique_ptr<Player>> retired_;        ///< Removed, memory not yet released.
   Reservations reservations_;
   std::unique_ptr<LookaheadWorkers> workers_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
