@@ -4,6 +4,7 @@
 // seconds.
 #include "bot_fleet.hpp"
 #include "raw_client.hpp"
+#include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,9 +20,12 @@ struct Match {
   server::Clock::time_point now = server::Clock::now();
   bots::BotFleetConfig config;
 
-  explicit Match(const std::string& scene, int bots, bots::BotScript script) {
+  explicit Match(const std::string& scene, int bots, bots::BotScript script,
+                 const std::filesystem::path& motions = {}) {
     std::string error;
-    EXPECT_TRUE(server.start(test::test_server_config(scene), error)) << error;
+    server::ServerConfig server_config = test::test_server_config(scene);
+    server_config.motions.motions_dir = motions;
+    EXPECT_TRUE(server.start(server_config, error)) << error;
     EXPECT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(server.port()), config.server, error));
     config.count = bots;
     config.script = script;
@@ -118,6 +122,27 @@ TEST(Bots, WanderersAndReplayersMove) {
     EXPECT_EQ(r.scene_collisions, 0u) << r.script;
     EXPECT_EQ(r.avatar_contacts, 0u) << r.script;
   }
+}
+
+TEST(Bots, ServerAndBotsRunOnAFolderOfRealMotionCapture) {
+  FORESIGHT_REQUIRE_MOCAP();
+  const auto folder = test::mocap_dir() / "locomotion";
+  Match m("arena", 3, bots::BotScript::kWander, folder);
+  // The bots load the same folder themselves (what --motions DIR does on both sides).
+  MotionLibrary library;
+  std::string error;
+  MotionSource source;
+  source.motions_dir = folder;
+  ASSERT_TRUE(motion_library_load(source, library, error)) << error;
+  ASSERT_EQ(library.content_hash, m.server.library().content_hash);
+  bots::BotFleet fleet(library, m.config);
+  m.play(fleet, 30 * 20);
+  const bots::BotReport r = fleet.report(m.now);
+  fleet.disconnect_all();
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.connected, 3);
+  EXPECT_GT(r.walked_m_mean, 3.0) << "captured walks move the avatars";
+  EXPECT_EQ(r.scene_collisions + r.avatar_contacts, 0u);
 }
 
 TEST(Bots, AnotherLibraryIsRefusedAndReported) {
