@@ -124,9 +124,9 @@ void Server::run_tick(Clock::time_point now) {
   const Clock::time_point tick_start = Clock::now();
   ++tick_;
   challenges_this_tick_ = 0;
-  joins_this_tick_ = 0;
   TickRecord record;
   receive(now);
+  admit_joins(now);
   expire(now);
   const Clock::time_point received = Clock::now();
   record.receive_ms = static_cast<float>(ms_between(tick_start, received));
@@ -162,13 +162,17 @@ void Server::log_status() const {
   std::fprintf(stderr,
                "foresight-server: tick %u, %d players; tick ms p50 %.2f p99 %.2f, %llu overruns; mean ms: "
                "receive %.2f, look-ahead %.1f of %.1f, advance %.2f, send %.2f; %lld expansions/tick, tree "
-               "size mean %.0f min %d; %llu packets in, %llu dropped; %llu avatar contacts\n",
+               "size mean %.0f min %d; %llu packets in, %llu dropped; joins %llu (%llu deferred, %llu refused); "
+               "%llu avatar contacts\n",
                tick_, num_players(), stats_.tick_ms_percentile(50), stats_.tick_ms_percentile(99),
                static_cast<unsigned long long>(stats_.overruns()), mean.receive_ms, mean.lookahead_ms,
                mean.budget_ms, mean.advance_ms, mean.send_ms,
                static_cast<long long>(mean.expansions), mean.tree_size_mean, mean.tree_size_min,
                static_cast<unsigned long long>(counters_.packets_in),
                static_cast<unsigned long long>(counters_.drops.total()),
+               static_cast<unsigned long long>(counters_.sessions_opened),
+               static_cast<unsigned long long>(counters_.joins_deferred),
+               static_cast<unsigned long long>(counters_.refused),
                static_cast<unsigned long long>(counters_.avatar_contacts));
 }
 
@@ -307,22 +311,38 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
     send_refuse(from, wire::RefuseReason::Library, text);
     return;
   }
-  if (joins_this_tick_ >= config_.max_joins_per_tick) {
-    ++counters_.joins_deferred;  // the client repeats its response every 250 ms
+  if (num_players() + static_cast<int>(join_queue_.size()) >= config_.max_players) {
+    send_refuse(from, wire::RefuseReason::ServerFull, "server full");
     return;
   }
-  ++joins_this_tick_;
+  // Verified (the cookie proves the address): queue it, once; admit_joins() takes a few per tick.
+  const uint64_t key = endpoint_key(from);
+  for (const PendingJoin& j : join_queue_)
+    if (j.key == key && same_endpoint(j.endpoint, from)) return;  // already waiting
+  if (!join_queue_.empty()) ++counters_.joins_deferred;
+  join_queue_.push_back({from, key, m.client_name() ? m.client_name()->str().substr(0, 64) : std::string()});
+}
+
+void Server::admit_joins(Clock::time_point now) {
+  for (int admitted = 0; admitted < config_.max_joins_per_tick && !join_queue_.empty(); ++admitted) {
+    PendingJoin join = std::move(join_queue_.front());
+    join_queue_.pop_front();
+    admit(join, now);
+  }
+}
+
+void Server::admit(const PendingJoin& join, Clock::time_point now) {
+  const protocol::Endpoint& from = join.endpoint;
   Placement spawn;
-  if (num_players() >= config_.max_players || !find_spawn(spawn)) {
-    send_refuse(from, wire::RefuseReason::ServerFull,
-                num_players() >= config_.max_players ? "server full" : "no free spawn place: try again later");
+  if (!find_spawn(spawn)) {
+    send_refuse(from, wire::RefuseReason::ServerFull, "no free spawn place: try again later");
     return;
   }
   auto p = std::make_unique<Player>();
   p->endpoint = from;
   p->session = next_session_++;
   p->avatar_id = next_avatar_++;
-  p->name = m.client_name() ? m.client_name()->str().substr(0, 64) : std::string();
+  p->name = join.name;
   p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, spawn);
   p->last_heard = now;
   p->tokens = config_.max_packets_per_s;

@@ -25,6 +25,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,7 +46,7 @@ struct ServerCounters {
   uint64_t challenges_sent = 0;
   uint64_t challenges_capped = 0;   ///< Connect requests ignored: over max_challenges_per_tick.
   uint64_t sessions_opened = 0;
-  uint64_t joins_deferred = 0;      ///< Cookie-checked joins left for a later tick (max_joins_per_tick).
+  uint64_t joins_deferred = 0;      ///< Verified joins that had to queue (max_joins_per_tick).
   uint64_t sessions_timed_out = 0;
   uint64_t sessions_closed = 0;     ///< Clean disconnects.
   uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
@@ -83,6 +84,11 @@ class Server {
 
  private:
   struct Player;
+  struct PendingJoin {
+    protocol::Endpoint endpoint;
+    uint64_t key = 0;
+    std::string name;
+  };
 
   void receive(Clock::time_point now);
   void handle(const protocol::Endpoint& from, const wire::Packet& packet, size_t bytes,
@@ -92,6 +98,8 @@ class Server {
   void on_connect_response(const protocol::Endpoint& from, const wire::ConnectResponse& m,
                            Clock::time_point now);
   void on_input(Player& p, const wire::Input& m);
+  void admit_joins(Clock::time_point now);
+  void admit(const PendingJoin& join, Clock::time_point now);
   void send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message);
   void send_accept(const Player& p);
   void send_stats(const Player& p);
@@ -120,6 +128,8 @@ class Server {
   std::vector<std::unique_ptr<Player>> players_;
   std::unordered_map<uint64_t, Player*> by_endpoint_;  ///< endpoint_key -> player
   std::vector<std::unique_ptr<Player>> retired_;        ///< Removed, memory not yet released.
+  /// Cookie-verified joins waiting their turn (at most max_players - players long).
+  std::deque<PendingJoin> join_queue_;
   Reservations reservations_;
   std::unique_ptr<LookaheadWorkers> workers_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
@@ -134,7 +144,6 @@ class Server {
   double snapshot_accumulator_ = 0;
   uint32_t snapshot_tick_ = 0;
   int challenges_this_tick_ = 0;
-  int joins_this_tick_ = 0;
   double tail_ms_estimate_ = 0;
   uint32_t next_overrun_log_tick_ = 0;  ///< Recent advance + send time (EMA), kept out of the budget.
   ServerCounters counters_;

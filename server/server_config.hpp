@@ -38,7 +38,7 @@ struct ServerConfig {
   /// Challenges answered per tick at most (a connect flood cannot eat the tick).
   int max_challenges_per_tick = 256;
   /// New players admitted per tick at most (creating an avatar and finding it a free spawn place
-  /// costs about a millisecond); the others are admitted on their client's next try.
+  /// costs about a millisecond); verified joins beyond it wait in a queue, first come first served.
   int max_joins_per_tick = 4;
   MotionSource motions;            ///< Default library, or --motions DIR.
 };
