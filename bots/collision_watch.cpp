@@ -2,6 +2,8 @@
 
 #include "avatar_view.hpp"
 
+#include <cstdio>
+
 namespace foresight::bots {
 
 CollisionWatch::CollisionWatch(float contact_distance_m) : contact_distance_m_(contact_distance_m) {
@@ -28,7 +30,17 @@ void CollisionWatch::observe(const MotionLibrary& library, const CollisionWorld&
       continue;
     }
     ++avatars_checked_;
-    if (shown_pose_collides(library, world, state, scratch_)) ++scene_collisions_;
+    if (shown_pose_collides(library, world, state, scratch_)) {
+      // The first few are described, so a collision can be replayed and understood.
+      if (++scene_collisions_ <= 5) {
+        const Placement root = playback_root(library, state);
+        std::fprintf(stderr,
+                     "foresight-bots: avatar %u collides with the scene in snapshot %u: segment '%s' frame %d "
+                     "(entered by transition %d), root (%.3f, %.3f) heading %.1f deg\n",
+                     avatars[checked_].id(), tick_, library.graph.segments[static_cast<size_t>(state.segment)].name.c_str(),
+                     state.frame, state.incoming_transition, root.pos_m.x, root.pos_m.y, degrees(root.heading_rad));
+      }
+    }
     const vec2 root = playback_root(library, state).pos_m;
     for (const vec2& other : roots_) {
       const vec2 d = root - other;
