@@ -19,7 +19,7 @@ struct ServerConfig {
   double session_timeout_s = 5.0;  ///< A client silent this long is dropped, its avatar removed.
   /// Look-ahead budget per tick: what the tick period leaves after the rest of the tick, minus the
   /// safety margin, at most this much (ms of wall-clock per tick, across all threads).
-  double lookahead_budget_ms = 12.0;
+  double lookahead_budget_ms = 8.0;
   double tick_safety_margin_ms = 6.0;
   /// Deterministic mode (tests, experiments): > 0 grows every tree by exactly this many
   /// expansions per tick instead of a time budget; 0 uses time.
