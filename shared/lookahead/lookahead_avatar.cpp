@@ -45,7 +45,7 @@ void LookaheadAvatar::set_input(const ControlInput& input) {
     input_ = ControlInput{};  // a broken command stops the avatar rather than steering it anywhere
     ++rejected_inputs_;
   }
-  tree_.set_command(control_world_direction(input_), root());
+  tree_.set_command(control_world_direction(input_), root(), input_.crouch);
 }
 
 GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(budget); }

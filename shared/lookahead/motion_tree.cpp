@@ -94,6 +94,8 @@ float MotionTree::base_match(const MotionTreeNode& n) const {
     const float pace = 0.5f + 0.5f * std::min(speed_mps / kWalkingPace_mps, 1.0f);
     g = direction * facing_match * pace;
   }
+  if (crouch_ && !(library_.graph.segments[static_cast<size_t>(n.segment)].tags & kTagCrouch))
+    g *= kStandingWhileCrouchHeld;
   return std::clamp(g, config_.min_priority, config_.max_priority);
 }
 
@@ -114,7 +116,8 @@ float MotionTree::grow_priority_of(const MotionTreeNode& n, float parent_grow) c
   return 0.0f;
 }
 
-void MotionTree::set_command(vec2 world_direction, const Placement& avatar) {
+void MotionTree::set_command(vec2 world_direction, const Placement& avatar, bool crouch) {
+  crouch_ = crouch;
   const float len = glm::length(world_direction);
   command_ = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
   avatar_ = avatar;

@@ -118,7 +118,9 @@ class MotionTree {
   /// For re-sorting strategies (command, hybrid) this recomputes every leaf's priority and
   /// rebuilds the queue; breadth-first, command-no-resort and statistic keep the priorities nodes
   /// were created with.
-  void set_command(vec2 world_direction, const Placement& avatar);
+  /// `crouch` (the player's crouch button) makes segments without kTagCrouch a poorer match, so
+  /// the avatar crouches where it can and stands where it must.
+  void set_command(vec2 world_direction, const Placement& avatar, bool crouch = false);
 
   /// Strategy 3 and 4 priorities (learned elsewhere). Without them both fall back to uniform.
   void set_statistics(TransitionStatistics statistics) { statistics_ = std::move(statistics); }
@@ -198,6 +200,8 @@ class MotionTree {
   uint32_t next_order_ = 0;
   static constexpr float kWalkingPace_mps = 1.2f;  // at or above it a motion gets full pace credit
   vec2 command_{0.0f};
+  bool crouch_ = false;
+  static constexpr float kStandingWhileCrouchHeld = 0.3f;  // base priority factor
   Placement avatar_;
   float segment_fps_ = 30.0f;
 };

@@ -61,6 +61,30 @@ TEST(LookaheadAvatar, FollowsASteadyCommandInTheOpen) {
   EXPECT_LT(std::abs(s.displacement.x), 0.5f * s.displacement.y);
 }
 
+TEST(LookaheadAvatar, HoldingCrouchMakesItCrouchWhereverItCan) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  for (bool crouch : {false, true}) {
+    for (vec2 dir : {vec2(0, 1), vec2(0, 0)}) {  // walking, and standing still
+      LookaheadAvatar avatar(lib, arena.world, MotionTreeConfig{}, test::idle_segment(lib),
+                             Placement{vec2(0, -5), 0.0f});
+      ControlInput in;
+      in.camera_dir = dir;
+      in.crouch = crouch;
+      run(avatar, lib, arena.world, in, 4 * 30, 300);  // settle into it
+      int crouched_frames = 0;
+      for (int f = 0; f < 60; ++f) {
+        run(avatar, lib, arena.world, in, 1, 300);
+        crouched_frames += (lib.graph.segments[static_cast<size_t>(avatar.playback().segment)].tags & kTagCrouch) != 0;
+      }
+      if (crouch)
+        EXPECT_EQ(crouched_frames, 60) << "moving: " << (dir != vec2(0.0f));
+      else
+        EXPECT_EQ(crouched_frames, 0) << "moving: " << (dir != vec2(0.0f));
+    }
+  }
+}
+
 TEST(LookaheadAvatar, SteeringIntoAWallNeverEntersIt) {
   const auto& lib = default_library();
   const auto& maze = loaded_scene("maze");

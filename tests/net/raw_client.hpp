@@ -80,10 +80,11 @@ class RawClient {
   }
 
   /// An Input holding one command: camera-space direction `dir` seen from a camera with yaw `yaw_rad`.
-  void send_input(vec2 dir, uint32_t sequence, float yaw_rad = 0.0f) {
+  void send_input(vec2 dir, uint32_t sequence, float yaw_rad = 0.0f, bool crouch = false) {
     ControlInput in;
     in.camera_dir = dir;
     in.camera_yaw_rad = yaw_rad;
+    in.crouch = crouch;
     const wire::InputCommand cmd = protocol::input_command_from(in, sequence);
     send(protocol::write_input(writer_, session, 0, sequence, {&cmd, 1}));
   }

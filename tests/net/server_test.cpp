@@ -75,6 +75,22 @@ TEST(Server, InputMovesTheAvatarAndSnapshotsFollowIt) {
   EXPECT_LT(glm::length(rebuilt.pos_m - root.pos_m), 0.01f);
 }
 
+TEST(Server, TheCrouchButtonReachesTheAvatar) {
+  Running r("arena");
+  RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  const float facing = r.server.avatar(c.avatar)->root().heading_rad;
+  uint32_t seq = 1;
+  int crouched = 0;
+  for (int i = 0; i < 150; ++i) {
+    c.send_input(vec2(0.0f, 1.0f), seq++, facing, /*crouch=*/true);
+    r.ticks(1);
+    const int segment = r.server.avatar(c.avatar)->playback().segment;
+    if (i >= 90) crouched += (r.server.library().graph.segments[static_cast<size_t>(segment)].tags & kTagCrouch) != 0;
+  }
+  EXPECT_EQ(crouched, 60) << "after 3 s holding crouch the avatar moves crouched";
+}
+
 TEST(Server, AClientWithAnotherLibraryIsRefusedWithAClearMessage) {
   Running r;
   RawClient c(r.server.port());
