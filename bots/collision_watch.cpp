@@ -30,7 +30,7 @@ void CollisionWatch::observe(const MotionLibrary& library, const CollisionWorld&
       continue;
     }
     ++avatars_checked_;
-    if (shown_pose_collides(library, world, state, scratch_)) {
+    if (shown_pose_collides(library, world, state, scratch_, kSceneTolerance_m)) {
       // The first few are described, so a collision can be replayed and understood.
       if (++scene_collisions_ <= 5) {
         const Placement root = playback_root(library, state);

@@ -20,7 +20,7 @@ float head_top_margin_m(const Skeleton& skeleton) {
 }
 
 bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& world,
-                         const PlaybackState& state, PoseCheckScratch& scratch) {
+                         const PlaybackState& state, PoseCheckScratch& scratch, float tolerance_m) {
   playback_pose(library, state, scratch.pose);
   scratch.joint_pos_m.resize(static_cast<size_t>(library.num_joints()));
   scratch.joint_rot.resize(static_cast<size_t>(library.num_joints()));
@@ -28,7 +28,7 @@ bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& wor
           scratch.joint_rot);
   const Placement to_local = state.segment_start.inverse();
   for (vec3& p : scratch.joint_pos_m) p = to_local.apply(p);
-  BodyVolume volume = place(body_volume_from_pose(scratch.joint_pos_m, library.body_margin_m,
+  BodyVolume volume = place(body_volume_from_pose(scratch.joint_pos_m, library.body_margin_m - tolerance_m,
                                                   library.head_top_margin_m),
                             state.segment_start);
   float ground_m = 0.0f;

@@ -24,8 +24,10 @@ struct PoseCheckScratch {
 /// True when the shown pose of `state` overlaps the scene. The bounding cylinder is fitted in the
 /// segment's own frame, exactly as motion_library_compile fits the precomputed volumes, then
 /// placed (a disc fitted to a world-axis box would differ at 45 degree headings); the clip plays
-/// at the ground height under its segment's start.
+/// at the ground height under its segment's start. `tolerance_m` shrinks the body sideways: an
+/// observer that rebuilds the pose from quantised snapshots (1 mm) passes 1 cm, so a body that
+/// grazes a wall on the server is not counted as inside it.
 bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& world,
-                         const PlaybackState& state, PoseCheckScratch& scratch);
+                         const PlaybackState& state, PoseCheckScratch& scratch, float tolerance_m = 0.0f);
 
 }  // namespace foresight
