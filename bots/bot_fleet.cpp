@@ -1,6 +1,6 @@
 #include "bot_fleet.hpp"
 
-#include "avatar_view.hpp"
+#include "protocol/avatar_state.hpp"
 
 #include <sys/epoll.h>
 #include <unistd.h>
@@ -108,7 +108,7 @@ void BotFleet::frame(TimePoint now) {
       Placement root;
       const Placement* own = nullptr;
       PlaybackState state;
-      if (const auto* a = bot.conn.own_avatar(); a && avatar_playback(library_, *a, state)) {
+      if (const auto* a = bot.conn.own_avatar(); a && protocol::avatar_playback(library_, *a, state)) {
         root = playback_root(library_, state);
         own = &root;
       }

@@ -1,6 +1,6 @@
 #include "collision_watch.hpp"
 
-#include "avatar_view.hpp"
+#include "protocol/avatar_state.hpp"
 
 #include <cstdio>
 
@@ -25,7 +25,7 @@ void CollisionWatch::observe(const MotionLibrary& library, const CollisionWorld&
   // Parts are appended as they arrive: only the avatars after checked_ are new.
   for (; checked_ < avatars.size(); ++checked_) {
     PlaybackState state;
-    if (!avatar_playback(library, avatars[checked_], state)) {
+    if (!protocol::avatar_playback(library, avatars[checked_], state)) {
       ++invalid_states_;
       continue;
     }

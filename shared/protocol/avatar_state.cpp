@@ -1,8 +1,8 @@
-#include "avatar_view.hpp"
+#include "protocol/avatar_state.hpp"
 
 #include "protocol/quantize.hpp"
 
-namespace foresight::bots {
+namespace foresight::protocol {
 
 bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& state,
                      PlaybackState& out) {
@@ -24,4 +24,4 @@ bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& stat
   return true;
 }
 
-}  // namespace foresight::bots
+}  // namespace foresight::protocol

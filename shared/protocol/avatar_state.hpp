@@ -5,11 +5,11 @@
 #include "foresight_generated.h"
 #include "library/playback.hpp"
 
-namespace foresight::bots {
+namespace foresight::protocol {
 
 /// False when the state names a segment, frame or transition outside `library` (or a transition
 /// that does not lead into the segment).
 bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& state,
                      PlaybackState& out);
 
-}  // namespace foresight::bots
+}  // namespace foresight::protocol

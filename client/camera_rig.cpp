@@ -1,0 +1,62 @@
+#include "camera_rig.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight::client {
+
+int designer_camera_for(const Scene& scene, vec2 pos_m, int current) {
+  const int n = static_cast<int>(scene.cameras.size());
+  if (current >= 0 && current < n && scene.cameras[static_cast<size_t>(current)].region.contains(pos_m))
+    return current;
+  for (int i = 0; i < n; ++i)
+    if (scene.cameras[static_cast<size_t>(i)].region.contains(pos_m)) return i;
+  return current < n ? current : -1;
+}
+
+CameraRig::CameraRig(const Scene* scene, const FollowCameraConfig& follow)
+    : scene_(scene), follow_config_(follow) {}
+
+void CameraRig::set_scene(const Scene* scene) {
+  scene_ = scene;
+  designer_ = -1;
+}
+
+void CameraRig::toggle_follow() {
+  follow_ = !follow_;
+  follow_placed_ = false;  // Snap behind the avatar rather than swinging round from afar.
+}
+
+void CameraRig::update(vec2 pos_m, float heading_rad, float dt_s) {
+  if (scene_) designer_ = designer_camera_for(*scene_, pos_m, designer_);
+  if (!following()) {
+    const SceneCamera& cam = scene_->cameras[static_cast<size_t>(designer_)];
+    eye_ = cam.position_m;
+    target_ = cam.target_m;
+    fov_y_ = cam.fov_y_rad;
+    follow_placed_ = false;
+    return;
+  }
+  // Follow: swing towards the avatar's heading at turn_rate, along the shorter way round.
+  if (!follow_placed_) {
+    follow_heading_ = heading_rad;
+    follow_placed_ = true;
+  } else {
+    const float k = 1.0f - std::exp(-follow_config_.turn_rate * std::max(dt_s, 0.0f));
+    follow_heading_ = wrap_angle(follow_heading_ + k * wrap_angle(heading_rad - follow_heading_));
+  }
+  const vec2 forward(std::sin(follow_heading_), std::cos(follow_heading_));
+  eye_ = from_ground(pos_m - forward * follow_config_.distance_m, follow_config_.height_m);
+  target_ = from_ground(pos_m, follow_config_.target_height_m);
+  fov_y_ = follow_config_.fov_y_rad;
+}
+
+glm::mat4 CameraRig::view() const { return glm::lookAt(eye_, target_, vec3(0.0f, 1.0f, 0.0f)); }
+
+glm::mat4 CameraRig::projection(float aspect) const {
+  return glm::perspective(fov_y_, std::max(aspect, 0.01f), 0.1f, 200.0f);
+}
+
+}  // namespace foresight::client

@@ -1,0 +1,305 @@
+#include "client_app.hpp"
+
+#include "avatar_decode.hpp"
+#include "camera_rig.hpp"
+#include "client_input.hpp"
+#include "renderer.hpp"
+#include "screenshot.hpp"
+#include "snapshot_buffer.hpp"
+
+#include "library/playback.hpp"
+#include "protocol/client_connection.hpp"
+#include "protocol/protocol.hpp"
+#include "world/data_paths.hpp"
+#include "world/scene_load.hpp"
+
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <thread>
+
+namespace foresight::client {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr vec3 kOwnColour{1.0f, 0.55f, 0.10f};    // orange: the player
+constexpr vec3 kOtherColour{0.25f, 0.45f, 0.85f}; // blue: everyone else
+constexpr vec3 kNpcColour{0.60f, 0.30f, 0.70f};
+constexpr vec3 kStoppedColour{0.70f, 0.30f, 0.30f};  // idle fallback: nothing feasible ahead
+/// Least time between two Inputs: the server ticks at 30 Hz, the window may draw far faster.
+constexpr std::chrono::milliseconds kInputInterval{30};
+constexpr double kMinFrameS = 1.0 / 240.0;  ///< Frame cap when vsync does not throttle.
+
+void on_glfw_error(int code, const char* message) {
+  std::fprintf(stderr, "foresight-client: GLFW error %d: %s\n", code, message);
+}
+
+// Edge-triggered keys (F, Escape) come through the callback; held keys are polled per frame.
+void on_key(GLFWwindow* window, int key, int, int action, int) {
+  if (action != GLFW_PRESS) return;
+  if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window, GLFW_TRUE);
+  if (key == GLFW_KEY_F) static_cast<CameraRig*>(glfwGetWindowUserPointer(window))->toggle_follow();
+}
+
+HeldKeys held_keys(GLFWwindow* w) {
+  // Focus lost: nothing is held (a key released in another window never reaches us).
+  if (!glfwGetWindowAttrib(w, GLFW_FOCUSED)) return {};
+  auto down = [w](int a, int b) { return glfwGetKey(w, a) == GLFW_PRESS || glfwGetKey(w, b) == GLFW_PRESS; };
+  HeldKeys k;
+  k.up = down(GLFW_KEY_UP, GLFW_KEY_W);
+  k.down = down(GLFW_KEY_DOWN, GLFW_KEY_S);
+  k.left = down(GLFW_KEY_LEFT, GLFW_KEY_A);
+  k.right = down(GLFW_KEY_RIGHT, GLFW_KEY_D);
+  k.crouch = glfwGetKey(w, GLFW_KEY_C) == GLFW_PRESS;
+  return k;
+}
+
+vec3 colour_of(const ShownAvatar& a, uint32_t own_id) {
+  if (a.id == own_id || (a.flags & protocol::kAvatarYours)) return kOwnColour;
+  if (a.flags & protocol::kAvatarNpc) return kNpcColour;
+  if (a.flags & protocol::kAvatarFallback) return kStoppedColour;
+  return kOtherColour;
+}
+
+// Everything one window needs; lives while its GL context is current.
+class Session {
+ public:
+  Session(GLFWwindow* window, const MotionLibrary& library, const ClientOptions& options)
+      : window_(window), library_(library), options_(options), connection_(connection_config()),
+        buffer_(buffer_config(options)) {
+    shown_.reserve(256);
+    entries_.reserve(256);
+    pose_.resize(library.num_joints());
+    next_pose_.resize(library.num_joints());
+    glfwSetWindowUserPointer(window_, &rig_);
+    glfwSetKeyCallback(window_, on_key);
+  }
+
+  bool init(std::string& error) { return renderer_.init(error); }
+
+  /// One frame. Returns false when the program should end (exit status in `status`).
+  bool frame(int& status);
+
+ private:
+  static protocol::ClientConfig connection_config() {
+    protocol::ClientConfig c;
+    c.min_input_interval = kInputInterval;
+    return c;
+  }
+  static SnapshotBufferConfig buffer_config(const ClientOptions& o) {
+    SnapshotBufferConfig c;
+    c.delay_s = o.delay_s;
+    return c;
+  }
+  void connection_step(Clock::time_point now, double t);
+  void on_connected();
+  void draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
+
+  GLFWwindow* window_;
+  const MotionLibrary& library_;
+  const ClientOptions& options_;
+  protocol::ClientConnection connection_;
+  SnapshotBuffer buffer_;
+  CameraRig rig_;
+  Renderer renderer_;
+  Scene scene_;
+  std::string scene_name_;
+  Clock::time_point start_ = Clock::now();
+  double last_frame_s_ = 0;
+
+  bool started_ = false, was_connected_ = false, reported_down_ = false;
+  double next_attempt_s_ = 0;
+  uint32_t last_tick_ = 0;
+  int last_parts_ = -1;
+  uint64_t rejected_ = 0;
+  int shot_frames_ = 0;
+
+  std::vector<AvatarEntry> entries_;
+  std::vector<ShownAvatar> shown_;
+  Pose pose_, next_pose_;
+};
+
+void Session::on_connected() {
+  const auto& a = connection_.accept();
+  std::fprintf(stderr, "foresight-client: connected to %s: scene '%s', avatar %u, %u Hz ticks\n",
+               options_.server_text.c_str(), a.scene.c_str(), a.avatar, a.tick_hz);
+  if (a.scene == scene_name_) return;
+  std::string error;
+  Scene scene;
+  if (!scene_load(scene_path(a.scene), scene, error)) {
+    // Still playable: avatars on an empty floor.
+    std::fprintf(stderr, "foresight-client: cannot load scene '%s' (%s): drawing avatars only\n",
+                 a.scene.c_str(), error.c_str());
+    scene = Scene{};
+    scene.bounds = {vec2(-20.0f), vec2(20.0f)};
+  }
+  scene_ = std::move(scene);
+  scene_name_ = a.scene;
+  rig_.set_scene(&scene_);
+  renderer_.set_scene(scene_);
+}
+
+void Session::connection_step(Clock::time_point now, double t) {
+  using protocol::ClientState;
+  const ClientState state = connection_.state();
+  if (state == ClientState::kConnecting || state == ClientState::kConnected) {
+    connection_.update(now);
+  } else if (!started_ || t >= next_attempt_s_) {
+    if (started_) std::fprintf(stderr, "foresight-client: reconnecting to %s\n", options_.server_text.c_str());
+    started_ = true;
+    reported_down_ = false;
+    buffer_.clear();
+    last_parts_ = -1;
+    if (!connection_.start(options_.server, library_.content_hash, options_.name, now)) {
+      std::fprintf(stderr, "foresight-client: %s\n", connection_.status_message().c_str());
+    }
+  }
+  const bool connected = connection_.connected();
+  if (connected && !was_connected_) on_connected();
+  was_connected_ = connected;
+  const ClientState after = connection_.state();
+  if (after != ClientState::kConnecting && after != ClientState::kConnected && !reported_down_) {
+    // The server is gone, refused us or never answered: say so once, then retry on a timer.
+    std::fprintf(stderr, "foresight-client: %s (%s); retrying every %.0f s\n",
+                 protocol::client_state_name(after), connection_.status_message().c_str(),
+                 options_.reconnect_interval_s);
+    reported_down_ = true;
+    next_attempt_s_ = t + options_.reconnect_interval_s;
+  }
+  if (!connected || !connection_.has_snapshot() || connection_.accept().tick_hz == 0) return;
+  // A new tick, or more parts of the newest one: (re)place it in the buffer.
+  if (connection_.snapshot_tick() != last_tick_ || connection_.snapshot_parts_received() != last_parts_) {
+    last_tick_ = connection_.snapshot_tick();
+    last_parts_ = connection_.snapshot_parts_received();
+    rejected_ += static_cast<uint64_t>(avatar_entries_from_wire(library_, connection_.avatars(), entries_));
+    buffer_.push(static_cast<double>(last_tick_) / connection_.accept().tick_hz, t, entries_);
+  }
+}
+
+void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen) {
+  renderer_.begin_frame();
+  buffer_.sample(library_, buffer_.render_time(t), shown_);
+  const uint32_t own_id = connection_.accept().avatar;
+  for (const ShownAvatar& a : shown_) {
+    const vec3 colour = colour_of(a, own_id);
+    playback_pose(library_, a.state, pose_);
+    if (a.frame_alpha > 0.0f) {
+      PlaybackState next = a.state;
+      next.frame += 1;
+      playback_pose(library_, next, next_pose_);
+      renderer_.add_avatar(library_, pose_, next_pose_, a.frame_alpha, colour);
+    } else {
+      renderer_.add_avatar(library_, pose_, colour);
+    }
+    if (colour == kOwnColour) {
+      const Placement root = playback_root(library_, a.state);
+      own_pos = root.pos_m;
+      own_heading = root.heading_rad;
+      own_seen = true;
+    }
+  }
+}
+
+bool Session::frame(int& status) {
+  const Clock::time_point now = Clock::now();
+  const double t = std::chrono::duration<double>(now - start_).count();
+  const auto dt = static_cast<float>(t - last_frame_s_);
+  last_frame_s_ = t;
+  glfwPollEvents();
+  if (glfwWindowShouldClose(window_)) {
+    connection_.disconnect();
+    status = 0;
+    return false;
+  }
+  connection_step(now, t);
+
+  vec2 own_pos = scene_.spawns.empty() ? vec2(0.0f) : scene_.spawns[0].pos_m;
+  float own_heading = scene_.spawns.empty() ? 0.0f : scene_.spawns[0].heading_rad;
+  bool own_seen = false;
+  draw_avatars(t, own_pos, own_heading, own_seen);
+  rig_.update(own_pos, own_heading, dt);
+  if (connection_.connected()) connection_.set_input(control_from_keys(held_keys(window_), rig_.yaw_rad()));
+
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);  // follows resizes
+  if (width > 0 && height > 0) {                     // 0: minimised, nothing to draw
+    renderer_.draw(width, height, rig_.view(),
+                   rig_.projection(static_cast<float>(width) / static_cast<float>(height)));
+  }
+
+  if (!options_.screenshot_path.empty()) {
+    // Count only frames that show the player among received snapshots.
+    if (own_seen && buffer_.size() >= 2) ++shot_frames_;
+    if (shot_frames_ >= options_.frames) {
+      std::string error;
+      glReadBuffer(GL_BACK);
+      if (!write_framebuffer_png(options_.screenshot_path, width, height, error)) {
+        std::fprintf(stderr, "foresight-client: %s\n", error.c_str());
+        status = 1;
+      } else {
+        std::fprintf(stderr, "foresight-client: wrote %s (%dx%d, %zu avatars)\n",
+                     options_.screenshot_path.c_str(), width, height, shown_.size());
+        status = 0;
+      }
+      connection_.disconnect();
+      return false;
+    }
+    if (t > options_.screenshot_timeout_s) {
+      std::fprintf(stderr, "foresight-client: no snapshots of our avatar after %.0f s (%s); no screenshot\n",
+                   t, connection_.status_message().c_str());
+      status = 1;
+      return false;
+    }
+  }
+  glfwSwapBuffers(window_);
+  const double spent = std::chrono::duration<double>(Clock::now() - now).count();
+  if (spent < kMinFrameS) std::this_thread::sleep_for(std::chrono::duration<double>(kMinFrameS - spent));
+  return true;
+}
+
+}  // namespace
+
+int client_run(const MotionLibrary& library, const ClientOptions& options, const std::atomic<bool>* stop) {
+  glfwSetErrorCallback(on_glfw_error);
+  if (!glfwInit()) {
+    std::fprintf(stderr, "foresight-client: cannot initialise GLFW (no display? try xvfb-run -a)\n");
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "Foresight", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "foresight-client: cannot open an OpenGL 3.3 core window\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(options.screenshot_path.empty() ? 1 : 0);
+  int status = 0;
+  {
+    auto session = std::make_unique<Session>(window, library, options);
+    std::string error;
+    if (!session->init(error)) {
+      std::fprintf(stderr, "foresight-client: %s\n", error.c_str());
+      status = 1;
+    } else {
+      std::fprintf(stderr, "foresight-client: OpenGL %s (%s)\n",
+                   reinterpret_cast<const char*>(glGetString(GL_VERSION)),
+                   reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+      while (!(stop && stop->load()) && session->frame(status)) {
+      }
+    }
+  }  // GL objects go while the context is still current
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return status;
+}
+
+}  // namespace foresight::client

@@ -1,0 +1,31 @@
+#pragma once
+// The interactive client: a GLFW window, the connection to the server, the snapshot buffer, the
+// cameras and the renderer, driven one frame at a time (docs/CLIENT.md).
+#include "protocol/udp_socket.hpp"
+
+#include <atomic>
+#include <string>
+
+namespace foresight {
+struct MotionLibrary;
+}
+
+namespace foresight::client {
+
+struct ClientOptions {
+  protocol::Endpoint server;
+  std::string server_text;  ///< As given (for messages).
+  std::string name = "player";
+  int width = 1280, height = 720;
+  double delay_s = 0.100;          ///< Interpolation delay.
+  std::string screenshot_path;     ///< Non-empty: render `frames` frames, write a PNG, exit.
+  int frames = 60;
+  double screenshot_timeout_s = 30;  ///< Screenshot mode: give up when nothing arrives by then.
+  double reconnect_interval_s = 2.0;
+};
+
+/// Runs until the window closes, Escape, `stop` or (screenshot mode) the PNG is written.
+/// Returns the process exit status: 0 fine, 1 on failure (reason on stderr).
+int client_run(const MotionLibrary& library, const ClientOptions& options, const std::atomic<bool>* stop);
+
+}  // namespace foresight::client

@@ -1,0 +1,63 @@
+// foresight-client: the interactive client (docs/CLIENT.md).
+//   foresight-client --server 127.0.0.1:7777 [--motions DIR] [--delay-ms 100]
+//                    [--screenshot out.png --frames N]
+// Arrows / WASD steer in camera space, C crouches, F toggles the follow camera, Escape quits.
+#include "client_app.hpp"
+
+#include "library/library_source.hpp"
+#include "library/motion_source_cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace foresight;
+  CLI::App app{"foresight-client: see and steer your avatar on a Foresight server"};
+  client::ClientOptions options;
+  options.server_text = "127.0.0.1:7777";
+  double delay_ms = 100;
+  app.add_option("--server", options.server_text, "Server address host:port")->capture_default_str();
+  app.add_option("--name", options.name, "Player name sent to the server")->capture_default_str();
+  app.add_option("--delay-ms", delay_ms, "Interpolation delay behind the newest snapshot")
+      ->check(CLI::Range(0.0, 2000.0))
+      ->capture_default_str();
+  app.add_option("--width", options.width, "Window width")->check(CLI::Range(64, 8192))->capture_default_str();
+  app.add_option("--height", options.height, "Window height")->check(CLI::Range(64, 8192))->capture_default_str();
+  app.add_option("--screenshot", options.screenshot_path,
+                 "Render --frames frames once our avatar shows, write this PNG and exit");
+  app.add_option("--frames", options.frames, "Frames before the screenshot")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--timeout", options.screenshot_timeout_s,
+                 "Screenshot mode: give up (exit 1) after this many seconds")
+      ->capture_default_str();
+  // The same library options as the server: the library's content hash must match its own.
+  MotionSource source;
+  add_motion_source_options(app, source);
+  CLI11_PARSE(app, argc, argv);
+  options.delay_s = delay_ms / 1000.0;
+
+  std::string error;
+  if (!protocol::parse_endpoint(options.server_text, options.server, error)) {
+    std::fprintf(stderr, "foresight-client: --server: %s\n", error.c_str());
+    return 1;
+  }
+  MotionLibrary library;
+  if (!motion_library_load(source, library, error)) {
+    std::fprintf(stderr, "foresight-client: %s\n", error.c_str());
+    return 1;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  return client::client_run(library, options, &g_stop);
+}

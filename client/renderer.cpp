@@ -1,0 +1,287 @@
+#include "renderer.hpp"
+
+#include "anim/fk.hpp"
+
+#include <epoxy/gl.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <cstddef>
+
+namespace foresight::client {
+
+namespace {
+
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in mat4 i_model;   // locations 2..5
+layout(location = 6) in vec4 i_colour;
+uniform mat4 u_view_proj;
+out vec3 v_world;
+out vec3 v_normal;
+out vec4 v_colour;
+void main() {
+  vec4 world = i_model * vec4(a_pos, 1.0);
+  v_world = world.xyz;
+  // Boxes are scaled non-uniformly: normals need the inverse transpose.
+  v_normal = normalize(transpose(inverse(mat3(i_model))) * a_normal);
+  v_colour = i_colour;
+  gl_Position = u_view_proj * world;
+}
+)";
+
+constexpr const char* kFragmentShader = R"(#version 330 core
+in vec3 v_world;
+in vec3 v_normal;
+in vec4 v_colour;
+out vec4 o_colour;
+void main() {
+  // One directional light plus ambient: faces at different angles get different brightness,
+  // which is what makes depth readable.
+  vec3 light = normalize(vec3(0.45, 1.0, 0.3));
+  vec3 n = normalize(v_normal);
+  float diffuse = max(dot(n, light), 0.0);
+  // A weak fill from the opposite side keeps faces turned away from the sun from going black.
+  float fill = max(dot(n, normalize(vec3(-0.45, 0.3, -0.3))), 0.0);
+  vec3 c = v_colour.rgb * (0.35 + 0.6 * diffuse + 0.25 * fill);
+  if (v_colour.a > 1.5) {  // floor: 1 m grid lines
+    vec2 f = abs(fract(v_world.xz) - 0.5);
+    float line = 1.0 - smoothstep(0.47, 0.49, max(f.x, f.y));
+    c *= mix(0.6, 1.0, line);
+  }
+  o_colour = vec4(c, 1.0);
+}
+)";
+
+// A unit cube: 36 vertices of (position, normal).
+void append_cube(std::vector<float>& v) {
+  const float n[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const auto& face : n) {
+    const vec3 normal(face[0], face[1], face[2]);
+    // Two axes spanning the face, ordered so the winding is counter-clockwise seen from outside.
+    const vec3 u = std::abs(normal.y) > 0.5f ? vec3(1, 0, 0) : vec3(0, 1, 0);
+    const vec3 w = glm::cross(normal, u);
+    const vec3 c = normal * 0.5f;
+    const vec3 corners[4] = {c - 0.5f * u - 0.5f * w, c + 0.5f * u - 0.5f * w,
+                             c + 0.5f * u + 0.5f * w, c - 0.5f * u + 0.5f * w};
+    for (int i : {0, 1, 2, 0, 2, 3}) {
+      v.insert(v.end(), {corners[i].x, corners[i].y, corners[i].z, normal.x, normal.y, normal.z});
+    }
+  }
+}
+
+unsigned compile(unsigned type, const char* source, std::string& error) {
+  const unsigned shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  int ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    error = std::string("shader compile failed: ") + log;
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+vec3 box_colour(BoxKind kind) {
+  switch (kind) {
+    case BoxKind::kWall: return {0.62f, 0.60f, 0.56f};
+    case BoxKind::kObstacle: return {0.55f, 0.42f, 0.30f};
+    case BoxKind::kBeam: return {0.45f, 0.35f, 0.55f};
+    case BoxKind::kTable: return {0.50f, 0.36f, 0.22f};
+    case BoxKind::kDoorwayLintel: return {0.52f, 0.50f, 0.46f};
+    case BoxKind::kShelf: return {0.40f, 0.50f, 0.45f};
+    case BoxKind::kProp: return {0.35f, 0.55f, 0.35f};
+  }
+  return {0.5f, 0.5f, 0.5f};
+}
+
+}  // namespace
+
+glm::mat4 box_matrix(vec3 min_m, vec3 max_m) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), 0.5f * (min_m + max_m));
+  return glm::scale(m, max_m - min_m);
+}
+
+glm::mat4 bone_matrix(vec3 a, vec3 b, float thickness_m) {
+  const vec3 d = b - a;
+  const float length = glm::length(d);
+  const vec3 z = length > 1e-6f ? d / length : vec3(0, 1, 0);
+  const vec3 helper = std::abs(z.y) < 0.9f ? vec3(0, 1, 0) : vec3(1, 0, 0);
+  const vec3 x = glm::normalize(glm::cross(helper, z));
+  const vec3 y = glm::cross(z, x);
+  glm::mat4 m(1.0f);
+  m[0] = glm::vec4(x * thickness_m, 0);
+  m[1] = glm::vec4(y * thickness_m, 0);
+  m[2] = glm::vec4(z * std::max(length, thickness_m), 0);
+  m[3] = glm::vec4(0.5f * (a + b), 1);
+  return m;
+}
+
+Renderer::~Renderer() {
+  // Only when init() ran (a context existed); the context must still be current.
+  if (program_) glDeleteProgram(program_);
+  const unsigned buffers[] = {cube_vbo_, static_vbo_, dynamic_vbo_};
+  const unsigned arrays[] = {static_vao_, dynamic_vao_};
+  for (unsigned b : buffers) if (b) glDeleteBuffers(1, &b);
+  for (unsigned a : arrays) if (a) glDeleteVertexArrays(1, &a);
+}
+
+bool Renderer::init(std::string& error) {
+  const unsigned vs = compile(GL_VERTEX_SHADER, kVertexShader, error);
+  if (!vs) return false;
+  const unsigned fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, error);
+  if (!fs) return false;
+  program_ = glCreateProgram();
+  glAttachShader(program_, vs);
+  glAttachShader(program_, fs);
+  glLinkProgram(program_);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  int ok = 0;
+  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
+    error = std::string("shader link failed: ") + log;
+    return false;
+  }
+  loc_view_proj_ = glGetUniformLocation(program_, "u_view_proj");
+
+  std::vector<float> cube;
+  append_cube(cube);
+  glGenBuffers(1, &cube_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, cube_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cube.size() * sizeof(float)), cube.data(),
+               GL_STATIC_DRAW);
+
+  // Two VAOs sharing the cube, each with its own instance buffer.
+  for (auto [vao, vbo] : {std::pair{&static_vao_, &static_vbo_}, std::pair{&dynamic_vao_, &dynamic_vbo_}}) {
+    glGenVertexArrays(1, vao);
+    glGenBuffers(1, vbo);
+    glBindVertexArray(*vao);
+    glBindBuffer(GL_ARRAY_BUFFER, cube_vbo_);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    glBindBuffer(GL_ARRAY_BUFFER, *vbo);
+    // Per instance: the model matrix as 4 column attributes, then the colour.
+    for (unsigned col = 0; col < 4; ++col) {
+      glEnableVertexAttribArray(2 + col);
+      glVertexAttribPointer(2 + col, 4, GL_FLOAT, GL_FALSE, sizeof(Instance),
+                            reinterpret_cast<const void*>(offsetof(Instance, model) + col * sizeof(glm::vec4)));
+      glVertexAttribDivisor(2 + col, 1);
+    }
+    glEnableVertexAttribArray(6);
+    glVertexAttribPointer(6, 4, GL_FLOAT, GL_FALSE, sizeof(Instance),
+                          reinterpret_cast<const void*>(offsetof(Instance, colour)));
+    glVertexAttribDivisor(6, 1);
+  }
+  glBindVertexArray(0);
+  dynamic_.reserve(4096);
+  return true;
+}
+
+void Renderer::set_scene(const Scene& scene) {
+  static_.clear();
+  const float floor_y = scene.terrain.floor_y_m;
+  static_.push_back({box_matrix(from_ground(scene.bounds.min_m, floor_y - 0.05f),
+                                from_ground(scene.bounds.max_m, floor_y)),
+                     glm::vec4(0.78f, 0.80f, 0.82f, 2.0f)});
+  for (const SceneBox& b : scene.boxes)
+    static_.push_back({box_matrix(b.min_m, b.max_m), glm::vec4(box_colour(b.kind), 1.0f)});
+  for (const StepBlock& s : scene.terrain.steps)
+    static_.push_back({box_matrix(s.min_m, s.max_m), glm::vec4(0.60f, 0.62f, 0.50f, 1.0f)});
+  const HeightField& hf = scene.terrain.height_field;
+  for (int iz = 0; iz < hf.count_z; ++iz) {
+    for (int ix = 0; ix < hf.count_x; ++ix) {
+      const float h = hf.heights_m[static_cast<size_t>(iz * hf.count_x + ix)];
+      if (std::isnan(h)) continue;  // a hole: nothing to draw (the floor shows through darker)
+      const vec2 lo = hf.origin_m + hf.cell_m * vec2(static_cast<float>(ix), static_cast<float>(iz));
+      static_.push_back({box_matrix(from_ground(lo, std::min(h, floor_y) - 0.06f),
+                                    from_ground(lo + vec2(hf.cell_m), h)),
+                         glm::vec4(0.70f, 0.72f, 0.64f, 2.0f)});
+    }
+  }
+  static_dirty_ = true;
+}
+
+void Renderer::begin_frame() { dynamic_.clear(); }
+
+void Renderer::add_bones(const MotionLibrary& library, vec3 colour) {
+  const auto& parents = library.skeleton.parents;
+  for (size_t j = 1; j < parents.size(); ++j) {
+    const vec3 a = global_pos_[static_cast<size_t>(parents[j])], b = global_pos_[j];
+    if (glm::length(b - a) < 0.01f) continue;
+    dynamic_.push_back({bone_matrix(a, b, 0.09f), glm::vec4(colour, 1.0f)});
+  }
+  // The head end of the chain gets a block of its own so avatars read as people.
+  dynamic_.push_back({bone_matrix(global_pos_.back(), global_pos_.back() + vec3(0, 0.001f, 0), 0.18f),
+                      glm::vec4(colour, 1.0f)});
+}
+
+void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour) {
+  const auto n = static_cast<size_t>(library.num_joints());
+  global_pos_.resize(n);  // no-op once sized
+  global_rot_.resize(n);
+  fk_pose(library.skeleton, pose.local_pos_m, pose.local_rot, global_pos_, global_rot_);
+  add_bones(library, colour);
+}
+
+void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next,
+                          float alpha, vec3 colour) {
+  const auto n = static_cast<size_t>(library.num_joints());
+  global_pos_.resize(n);
+  global_pos_next_.resize(n);
+  global_rot_.resize(n);
+  fk_pose(library.skeleton, next.local_pos_m, next.local_rot, global_pos_next_, global_rot_);
+  fk_pose(library.skeleton, pose.local_pos_m, pose.local_rot, global_pos_, global_rot_);
+  for (size_t j = 0; j < n; ++j) global_pos_[j] += alpha * (global_pos_next_[j] - global_pos_[j]);
+  add_bones(library, colour);
+}
+
+void Renderer::upload_and_draw(unsigned vao, unsigned vbo, size_t& capacity,
+                               const std::vector<Instance>& v) {
+  if (v.empty()) return;
+  glBindBuffer(GL_ARRAY_BUFFER, vbo);
+  const auto bytes = static_cast<GLsizeiptr>(v.size() * sizeof(Instance));
+  if (v.size() > capacity) {
+    capacity = v.capacity();
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(capacity * sizeof(Instance)), nullptr,
+                 GL_DYNAMIC_DRAW);
+  }
+  glBufferSubData(GL_ARRAY_BUFFER, 0, bytes, v.data());
+  glBindVertexArray(vao);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(v.size()));
+}
+
+void Renderer::draw(int width, int height, const glm::mat4& view, const glm::mat4& projection) {
+  glViewport(0, 0, width, height);
+  glClearColor(0.55f, 0.68f, 0.82f, 1.0f);  // sky
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glUseProgram(program_);
+  const glm::mat4 view_proj = projection * view;
+  glUniformMatrix4fv(loc_view_proj_, 1, GL_FALSE, glm::value_ptr(view_proj));
+  if (static_dirty_) {
+    // Static instances go up once per scene; a zero capacity forces the (re)allocation.
+    static_capacity_ = 0;
+    static_dirty_ = false;
+    upload_and_draw(static_vao_, static_vbo_, static_capacity_, static_);
+  } else if (!static_.empty()) {
+    glBindVertexArray(static_vao_);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(static_.size()));
+  }
+  upload_and_draw(dynamic_vao_, dynamic_vbo_, dynamic_capacity_, dynamic_);
+  glBindVertexArray(0);
+}
+
+}  // namespace foresight::client

@@ -1,0 +1,66 @@
+#pragma once
+// Draws the world with OpenGL 3.3 core (through libepoxy): everything is a shaded unit cube,
+// instanced (one draw call for the static scene, one for the avatars), so 100+ avatars of ~20
+// bones each cost two draw calls. The floor carries a grid drawn in the fragment shader.
+// Needs a current GL context for every call but the constructor.
+#include "library/motion_library.hpp"
+#include "world/scene.hpp"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include <string>
+#include <vector>
+
+namespace foresight::client {
+
+class Renderer {
+ public:
+  Renderer() = default;
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Compiles the shaders and creates the buffers. False with a reason.
+  bool init(std::string& error);
+  /// Rebuilds the static instances (floor, boxes, steps, height field) for `scene`.
+  void set_scene(const Scene& scene);
+
+  /// Starts a frame's dynamic instances (avatars).
+  void begin_frame();
+  /// Adds one avatar: FK of `pose` (pelvis in world space), a box per bone.
+  void add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour);
+  /// Like add_avatar, with joint positions lerped `alpha` of the way to `next` (fractional frames).
+  void add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next, float alpha,
+                  vec3 colour);
+  /// Clears the viewport (width x height pixels) and draws the scene and the frame's avatars.
+  void draw(int width, int height, const glm::mat4& view, const glm::mat4& projection);
+
+  size_t avatar_instances() const { return dynamic_.size(); }
+
+ private:
+  struct Instance {
+    glm::mat4 model;
+    glm::vec4 colour;  ///< a = 1: plain; a = 2: floor grid.
+  };
+  void add_bones(const MotionLibrary& library, vec3 colour);
+  void upload_and_draw(unsigned vao, unsigned vbo, size_t& capacity, const std::vector<Instance>& v);
+
+  unsigned program_ = 0;
+  int loc_view_proj_ = -1;
+  unsigned cube_vbo_ = 0;
+  unsigned static_vao_ = 0, static_vbo_ = 0, dynamic_vao_ = 0, dynamic_vbo_ = 0;
+  size_t static_capacity_ = 0, dynamic_capacity_ = 0;  ///< Instances the GPU buffers hold.
+  bool static_dirty_ = false;
+  std::vector<Instance> static_, dynamic_;
+  // FK scratch, sized once per library (no allocation per frame).
+  std::vector<vec3> global_pos_, global_pos_next_;
+  std::vector<quat> global_rot_;
+};
+
+/// Model matrix of a unit cube (centred, side 1) stretched into the axis-aligned box [min, max].
+glm::mat4 box_matrix(vec3 min_m, vec3 max_m);
+/// Model matrix of a bone from `a` to `b` with the given thickness (identity-free: any direction).
+glm::mat4 bone_matrix(vec3 a, vec3 b, float thickness_m);
+
+}  // namespace foresight::client

@@ -1,0 +1,154 @@
+#include "snapshot_buffer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace foresight::client {
+
+namespace {
+
+// How fast the server-minus-local clock offset follows new samples. A sample above the estimate
+// came through faster than usual (less queueing): follow it quickly. One below it was delayed:
+// follow slowly, so one late packet does not pull playback back.
+constexpr double kOffsetRiseRate = 0.5;
+constexpr double kOffsetFallRate = 0.02;
+constexpr double kOffsetSnapS = 1.0;  ///< Further off than this: a new session or a stall; jump.
+
+int segment_frames(const MotionLibrary& library, int segment) {
+  return library.graph.segments[static_cast<size_t>(segment)].num_frames();
+}
+
+float segment_fps(const MotionLibrary& library, int segment) {
+  const int clip = library.graph.segments[static_cast<size_t>(segment)].clip;
+  return library.clips[static_cast<size_t>(clip)].fps;
+}
+
+bool same_playthrough(const PlaybackState& a, const PlaybackState& b) {
+  return a.segment == b.segment && a.incoming_transition == b.incoming_transition &&
+         a.segment_start.pos_m == b.segment_start.pos_m &&
+         a.segment_start.heading_rad == b.segment_start.heading_rad && b.frame >= a.frame;
+}
+
+// The state `alpha` of the way from `a` to `b` (b later). Within one play-through of a segment
+// the frame moves linearly; otherwise `a` plays to its end, then `b`'s segment from its start
+// (skipped segments in between, if packets were lost, are not reconstructed).
+void interpolate(const MotionLibrary& library, const PlaybackState& a, const PlaybackState& b,
+                 double alpha, ShownAvatar& out) {
+  if (same_playthrough(a, b)) {
+    out.state = a;
+    advance_frames(library, out.state, out.frame_alpha, alpha * (b.frame - a.frame));
+    return;
+  }
+  const double remaining = std::max(0, segment_frames(library, a.segment) - a.frame);
+  const double p = alpha * (remaining + b.frame);
+  if (p < remaining) {
+    out.state = a;
+    advance_frames(library, out.state, out.frame_alpha, p);
+  } else {
+    out.state = b;
+    out.state.frame = 0;
+    advance_frames(library, out.state, out.frame_alpha, p - remaining);
+  }
+}
+
+}  // namespace
+
+void advance_frames(const MotionLibrary& library, PlaybackState& state, float& alpha, double frames) {
+  const int n = segment_frames(library, state.segment);
+  const double f = std::clamp(state.frame + std::max(0.0, frames), 0.0, static_cast<double>(n));
+  state.frame = std::min(static_cast<int>(std::floor(f)), n);
+  alpha = state.frame >= n ? 0.0f : static_cast<float>(f - state.frame);
+}
+
+const AvatarEntry* SnapshotBuffer::Snapshot::find(uint32_t id) const {
+  const auto it = std::lower_bound(avatars.begin(), avatars.end(), id,
+                                   [](const AvatarEntry& e, uint32_t v) { return e.id < v; });
+  return it != avatars.end() && it->id == id ? &*it : nullptr;
+}
+
+SnapshotBuffer::SnapshotBuffer(const SnapshotBufferConfig& config) : config_(config) {
+  config_.capacity = std::max(config_.capacity, 2);
+  slots_.resize(static_cast<size_t>(config_.capacity));
+  for (auto& s : slots_) s.avatars.reserve(256);
+  order_.resize(slots_.size());
+  std::iota(order_.begin(), order_.end(), size_t{0});
+}
+
+void SnapshotBuffer::clear() {
+  count_ = 0;
+  has_offset_ = false;
+  std::iota(order_.begin(), order_.end(), size_t{0});
+}
+
+double SnapshotBuffer::newest_time() const { return count_ ? at(count_ - 1).time_s : 0.0; }
+
+void SnapshotBuffer::push(double server_time_s, double local_s, std::span<const AvatarEntry> avatars) {
+  const double sample = server_time_s - local_s;
+  if (!has_offset_ || std::abs(sample - clock_offset_s_) > kOffsetSnapS) {
+    clock_offset_s_ = sample;
+    has_offset_ = true;
+  } else {
+    clock_offset_s_ += (sample > clock_offset_s_ ? kOffsetRiseRate : kOffsetFallRate) *
+                       (sample - clock_offset_s_);
+  }
+
+  // Where it goes in time order.
+  const auto live_end = order_.begin() + static_cast<std::ptrdiff_t>(count_);
+  auto pos = std::lower_bound(order_.begin(), live_end, server_time_s,
+                              [this](size_t slot, double t) { return slots_[slot].time_s < t; });
+  size_t slot;
+  if (pos != live_end && slots_[*pos].time_s == server_time_s) {
+    slot = *pos;  // The same tick again (another part): replace.
+  } else if (count_ < order_.size()) {
+    slot = order_[count_];  // A free slot: move it into place.
+    std::rotate(pos, live_end, live_end + 1);
+    ++count_;
+  } else {
+    if (pos == order_.begin()) return;  // Older than everything kept: too late to matter.
+    slot = order_[0];                    // Reuse the oldest: shift the older ones down.
+    std::rotate(order_.begin(), order_.begin() + 1, pos);
+    *(pos - 1) = slot;
+  }
+  Snapshot& s = slots_[slot];
+  s.time_s = server_time_s;
+  s.avatars.assign(avatars.begin(), avatars.end());
+  std::sort(s.avatars.begin(), s.avatars.end(),
+            [](const AvatarEntry& a, const AvatarEntry& b) { return a.id < b.id; });
+}
+
+void SnapshotBuffer::sample(const MotionLibrary& library, double t, std::vector<ShownAvatar>& out) const {
+  out.clear();
+  if (count_ == 0) return;
+  // The newest snapshot at or before t decides who is shown (before the oldest: the oldest, held).
+  size_t i0 = 0;
+  while (i0 + 1 < count_ && at(i0 + 1).time_s <= t) ++i0;
+  const Snapshot& s0 = at(i0);
+  for (const AvatarEntry& a : s0.avatars) {
+    ShownAvatar shown;
+    shown.id = a.id;
+    shown.flags = a.flags;
+    // The next snapshot holding this avatar (a lost part may have left it out of the very next).
+    const AvatarEntry* b = nullptr;
+    double t1 = 0;
+    for (size_t j = i0 + 1; j < count_ && !b; ++j) {
+      b = at(j).find(a.id);
+      t1 = at(j).time_s;
+    }
+    if (t <= s0.time_s) {
+      shown.state = a.state;
+    } else if (b) {
+      interpolate(library, a.state, b->state, (t - s0.time_s) / (t1 - s0.time_s), shown);
+      shown.flags = b->flags;
+    } else {
+      // Late (or gone next): play on at the clip's rate, capped.
+      const double dt = std::min(t - s0.time_s, config_.max_extrapolation_s);
+      shown.state = a.state;
+      advance_frames(library, shown.state, shown.frame_alpha, dt * segment_fps(library, a.state.segment));
+      shown.extrapolated = true;
+    }
+    out.push_back(shown);
+  }
+}
+
+}  // namespace foresight::client

@@ -1,0 +1,86 @@
+#include "camera_rig.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace foresight::client {
+namespace {
+
+Scene two_rooms() {
+  Scene scene;
+  SceneCamera west;
+  west.name = "west";
+  west.position_m = vec3(-2, 8, 5);
+  west.target_m = vec3(4, 0, 5);
+  west.region = {vec2(0, 0), vec2(6, 10)};
+  SceneCamera east = west;
+  east.name = "east";
+  east.position_m = vec3(12, 8, 5);
+  east.target_m = vec3(6, 0, 5);
+  east.region = {vec2(4, 0), vec2(10, 10)};  // overlaps west on x in [4, 6]
+  scene.cameras = {west, east};
+  return scene;
+}
+
+TEST(CameraRig, SwitchesDesignerCamerasWithRegions) {
+  const Scene scene = two_rooms();
+  CameraRig rig(&scene);
+  rig.update(vec2(1, 5), 0.0f, 0.016f);
+  EXPECT_EQ(rig.designer_camera(), 0);
+  EXPECT_FALSE(rig.following());
+  EXPECT_EQ(rig.eye_m(), scene.cameras[0].position_m);
+  EXPECT_NEAR(rig.yaw_rad(), heading_of(vec2(1, 0)), 1e-5);  // west camera looks along +x
+  rig.update(vec2(8, 5), 0.0f, 0.016f);
+  EXPECT_EQ(rig.designer_camera(), 1);
+  EXPECT_NEAR(rig.yaw_rad(), heading_of(vec2(-1, 0)), 1e-5);
+}
+
+TEST(CameraRig, HysteresisKeepsTheCameraWhileItStillCovers) {
+  const Scene scene = two_rooms();
+  CameraRig rig(&scene);
+  rig.update(vec2(8, 5), 0.0f, 0.016f);
+  EXPECT_EQ(rig.designer_camera(), 1);
+  rig.update(vec2(5, 5), 0.0f, 0.016f);  // overlap: east still covers
+  EXPECT_EQ(rig.designer_camera(), 1);
+  rig.update(vec2(3, 5), 0.0f, 0.016f);  // only west now
+  EXPECT_EQ(rig.designer_camera(), 0);
+  rig.update(vec2(5, 5), 0.0f, 0.016f);  // overlap again: west stays
+  EXPECT_EQ(rig.designer_camera(), 0);
+  rig.update(vec2(50, 50), 0.0f, 0.016f);  // outside every region: keep the last
+  EXPECT_EQ(rig.designer_camera(), 0);
+}
+
+TEST(CameraRig, FollowCameraSitsBehindTheAvatar) {
+  const Scene scene = two_rooms();
+  CameraRig rig(&scene);
+  rig.update(vec2(1, 5), 0.0f, 0.016f);
+  rig.toggle_follow();
+  const float heading = 0.7f;
+  rig.update(vec2(2, 3), heading, 0.016f);
+  EXPECT_TRUE(rig.following());
+  const vec2 forward(std::sin(heading), std::cos(heading));
+  const vec2 to_avatar = vec2(2, 3) - ground(rig.eye_m());
+  EXPECT_GT(glm::dot(to_avatar, forward), 1.0f);               // behind
+  EXPECT_NEAR(std::abs(to_avatar.x * forward.y - to_avatar.y * forward.x), 0.0f, 1e-4);  // on line
+  EXPECT_GT(rig.eye_m().y, 1.0f);
+  EXPECT_NEAR(rig.yaw_rad(), heading, 1e-4);
+  // Turning: the camera swings round towards the new heading, not instantly.
+  rig.update(vec2(2, 3), heading + 1.0f, 0.1f);
+  EXPECT_GT(rig.yaw_rad(), heading + 0.05f);
+  EXPECT_LT(rig.yaw_rad(), heading + 0.95f);
+  rig.toggle_follow();
+  rig.update(vec2(1, 5), 0.0f, 0.016f);
+  EXPECT_FALSE(rig.following());
+}
+
+TEST(CameraRig, NoDesignerCamerasMeansFollow) {
+  const Scene scene;
+  CameraRig rig(&scene);
+  rig.update(vec2(0, 0), 0.0f, 0.016f);
+  EXPECT_TRUE(rig.following());
+  EXPECT_NEAR(rig.yaw_rad(), 0.0f, 1e-5);
+}
+
+}  // namespace
+}  // namespace foresight::client
