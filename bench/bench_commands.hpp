@@ -39,6 +39,15 @@ struct LookaheadBenchOptions {
 };
 int bench_lookahead(const LookaheadBenchOptions& options);
 
+struct ClientBenchOptions {
+  int avatars = 1000;
+  double seconds = 3.0;
+  unsigned long long seed = 1;
+  bool json = false;
+};
+/// Only built when foresight_client is (FORESIGHT_HAVE_CLIENT).
+int bench_client(const ClientBenchOptions& options);
+
 struct LoadReportOptions {
   std::vector<std::string> inputs;  ///< Files whose last JSON line is foresight-bots --json output.
   std::string out_dir = "out/loadtest";

@@ -3,6 +3,7 @@
 //   foresight-bench bvh [--file F] [--json]
 //   foresight-bench graph --motions DIR [--json]
 //   foresight-bench lookahead [--scene maze] [--strategy command] [--json]
+//   foresight-bench client [--avatars 1000] [--seconds 3] [--json]   (when foresight_client is built)
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
 
@@ -56,6 +57,15 @@ int main(int argc, char** argv) {
   l->add_option("--seed", lookahead.seed, "Placement seed");
   l->add_flag("--json", lookahead.json, "Print one JSON object as the last line");
 
+#ifdef FORESIGHT_HAVE_CLIENT
+  ClientBenchOptions client;
+  auto* cl = app.add_subcommand("client", "Client frame CPU work: snapshot buffer sample + pose rebuild of N avatars");
+  cl->add_option("--avatars", client.avatars, "Avatars")->check(CLI::Range(1, 100000));
+  cl->add_option("--seconds", client.seconds, "Measured seconds")->check(CLI::Range(0.1, 600.0));
+  cl->add_option("--seed", client.seed, "Seed of spawns and successor choices");
+  cl->add_flag("--json", client.json, "Print one JSON object as the last line");
+#endif
+
   LoadReportOptions load;
   auto* lr = app.add_subcommand("load-report", "Table, CSV and chart from foresight-bots --json outputs (scripts/loadtest)");
   lr->add_option("inputs", load.inputs, "Files ending in a foresight-bots --json line")->required();
@@ -63,6 +73,9 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (*lr) return bench_load_report(load);
+#ifdef FORESIGHT_HAVE_CLIENT
+  if (*cl) return bench_client(client);
+#endif
   if (*l) return bench_lookahead(lookahead);
   if (*c) return bench_collision(collision);
   if (*b) return bench_bvh(bvh);
