@@ -34,6 +34,15 @@ constexpr vec3 kStoppedColour{0.70f, 0.30f, 0.30f};  // idle fallback: nothing f
 /// Least time between two Inputs: the server ticks at 30 Hz, the window may draw far faster.
 constexpr std::chrono::milliseconds kInputInterval{30};
 constexpr double kMinFrameS = 1.0 / 240.0;  ///< Frame cap when vsync does not throttle.
+/// Tree overlay (paper Fig. 5): how often the tree is asked for, and how it is drawn.
+constexpr double kTreeRequestIntervalS = 0.2;
+constexpr vec3 kTreeColour{0.10f, 0.85f, 0.85f};    // cyan: the sampled tree
+constexpr vec3 kChosenColour{1.00f, 0.95f, 0.10f};  // yellow: the branch the tree would take now
+constexpr float kTreeLineM = 0.06f, kChosenLineM = 0.12f;
+/// A square outline (side) around each chosen node's end: idle clips end where they start, and
+/// the choice still shows around a standing avatar's feet.
+constexpr float kChosenMarkM = 0.60f;
+constexpr float kTreeLiftM = 0.06f;  ///< Above the floor, so the floor never hides the lines.
 
 void on_glfw_error(int code, const char* message) {
   std::fprintf(stderr, "foresight-client: GLFW error %d: %s\n", code, message);
@@ -72,6 +81,7 @@ class Session {
   Session(GLFWwindow* window, const MotionLibrary& library, const ClientOptions& options)
       : window_(window), library_(library), options_(options), connection_(connection_config()),
         buffer_(buffer_config(options)) {
+    tree_overlay_ = options.tree_overlay;
     shown_.reserve(256);
     entries_.reserve(256);
     pose_.resize(library.num_joints());
@@ -99,6 +109,7 @@ class Session {
   void connection_step(Clock::time_point now, double t);
   void on_connected();
   void draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
+  void tree_overlay_step(double t);
 
   GLFWwindow* window_;
   const MotionLibrary& library_;
@@ -118,6 +129,8 @@ class Session {
   int last_parts_ = -1;
   uint64_t rejected_ = 0;
   int shot_frames_ = 0;
+  bool tree_overlay_ = false, tree_key_down_ = false;
+  double next_tree_request_s_ = 0;
 
   std::vector<AvatarEntry> entries_;
   std::vector<ShownAvatar> shown_;
@@ -205,6 +218,40 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
   }
 }
 
+// Key T (edge-triggered, polled) toggles the overlay; while on, the tree is asked for every
+// kTreeRequestIntervalS and the newest summary drawn: a line from each sampled node's parent end
+// to its own end (the root's from where it started), the chosen branch thicker and in yellow with
+// a square outline around each of its nodes' ends.
+void Session::tree_overlay_step(double t) {
+  const bool down = glfwGetWindowAttrib(window_, GLFW_FOCUSED) && glfwGetKey(window_, GLFW_KEY_T) == GLFW_PRESS;
+  if (down && !tree_key_down_) tree_overlay_ = !tree_overlay_;
+  tree_key_down_ = down;
+  if (!tree_overlay_ || !connection_.connected()) return;
+  if (t >= next_tree_request_s_) {
+    connection_.request_tree();
+    next_tree_request_s_ = t + kTreeRequestIntervalS;
+  }
+  const protocol::TreeView& tree = connection_.tree();
+  if (connection_.tree_count() == 0 || tree.avatar != connection_.accept().avatar) return;
+  const float y = scene_.terrain.floor_y_m + kTreeLiftM;
+  const auto at = [y](vec2 ground) { return vec3(ground.x, y, ground.y); };
+  // Ordinary nodes first, the chosen branch after: where they overlap the highlight wins.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t i = 0; i < tree.size(); ++i) {
+      if ((tree.chosen[i] != 0) != (pass == 1)) continue;
+      const vec2 from = tree.parent[i] == protocol::kTreeNoParent ? tree.origin_m : tree.end_m[tree.parent[i]];
+      renderer_.add_line(at(from), at(tree.end_m[i]), pass == 1 ? kChosenLineM : kTreeLineM,
+                         pass == 1 ? kChosenColour : kTreeColour);
+      if (pass == 1) {  // a square outline around the end
+        const vec3 c = at(tree.end_m[i]);
+        const float h = 0.5f * kChosenMarkM;
+        const vec3 corners[4] = {c + vec3(-h, 0, -h), c + vec3(h, 0, -h), c + vec3(h, 0, h), c + vec3(-h, 0, h)};
+        for (int k = 0; k < 4; ++k) renderer_.add_line(corners[k], corners[(k + 1) % 4], kTreeLineM, kChosenColour);
+      }
+    }
+  }
+}
+
 bool Session::frame(int& status) {
   const Clock::time_point now = Clock::now();
   const double t = std::chrono::duration<double>(now - start_).count();
@@ -222,6 +269,7 @@ bool Session::frame(int& status) {
   float own_heading = scene_.spawns.empty() ? 0.0f : scene_.spawns[0].heading_rad;
   bool own_seen = false;
   draw_avatars(t, own_pos, own_heading, own_seen);
+  tree_overlay_step(t);
   rig_.update(own_pos, own_heading, dt);
   if (connection_.connected()) connection_.set_input(control_from_keys(held_keys(window_), rig_.yaw_rad()));
 
@@ -234,7 +282,8 @@ bool Session::frame(int& status) {
 
   if (!options_.screenshot_path.empty()) {
     // Count only frames that show the player among received snapshots.
-    if (own_seen && buffer_.size() >= 2) ++shot_frames_;
+    // With the tree overlay on, also wait for the first tree summary.
+    if (own_seen && buffer_.size() >= 2 && (!tree_overlay_ || connection_.tree_count() > 0)) ++shot_frames_;
     if (shot_frames_ >= options_.frames) {
       std::string error;
       glReadBuffer(GL_BACK);

@@ -22,6 +22,7 @@ struct ClientOptions {
   int frames = 60;
   double screenshot_timeout_s = 30;  ///< Screenshot mode: give up when nothing arrives by then.
   double reconnect_interval_s = 2.0;
+  bool tree_overlay = false;  ///< Start with the feasible-motion-tree overlay on (key T toggles).
 };
 
 /// Runs until the window closes, Escape, `stop` or (screenshot mode) the PNG is written.

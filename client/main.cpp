@@ -1,7 +1,8 @@
 // foresight-client: the interactive client (docs/CLIENT.md).
 //   foresight-client --server 127.0.0.1:7777 [--motions DIR] [--delay-ms 100]
-//                    [--screenshot out.png --frames N]
-// Arrows / WASD steer in camera space, C crouches, F toggles the follow camera, Escape quits.
+//                    [--screenshot out.png --frames N] [--tree-overlay]
+// Arrows / WASD steer in camera space, C crouches, F toggles the follow camera, T the
+// feasible-motion-tree overlay, Escape quits.
 #include "client_app.hpp"
 
 #include "library/library_source.hpp"
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--width", options.width, "Window width")->check(CLI::Range(64, 8192))->capture_default_str();
   app.add_option("--height", options.height, "Window height")->check(CLI::Range(64, 8192))->capture_default_str();
+  app.add_flag("--tree-overlay", options.tree_overlay,
+               "Start with the feasible-motion-tree overlay on (key T toggles it)");
   app.add_option("--screenshot", options.screenshot_path,
                  "Render --frames frames once our avatar shows, write this PNG and exit");
   app.add_option("--frames", options.frames, "Frames before the screenshot")

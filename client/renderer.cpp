@@ -46,7 +46,9 @@ void main() {
   // A weak fill from the opposite side keeps faces turned away from the sun from going black.
   float fill = max(dot(n, normalize(vec3(-0.45, 0.3, -0.3))), 0.0);
   vec3 c = v_colour.rgb * (0.35 + 0.6 * diffuse + 0.25 * fill);
-  if (v_colour.a > 1.5) {  // floor: 1 m grid lines
+  if (v_colour.a > 2.5) {  // overlay lines: unlit, the exact colour from every side
+    c = v_colour.rgb;
+  } else if (v_colour.a > 1.5) {  // floor: 1 m grid lines
     vec2 f = abs(fract(v_world.xz) - 0.5);
     float line = 1.0 - smoothstep(0.47, 0.49, max(f.x, f.y));
     c *= mix(0.6, 1.0, line);
@@ -245,6 +247,11 @@ void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, const 
   fk_pose(library.skeleton, pose.local_pos_m, pose.local_rot, global_pos_, global_rot_);
   for (size_t j = 0; j < n; ++j) global_pos_[j] += alpha * (global_pos_next_[j] - global_pos_[j]);
   add_bones(library, colour);
+}
+
+void Renderer::add_line(vec3 a, vec3 b, float thickness_m, vec3 colour) {
+  if (glm::length(b - a) < 1e-3f) return;
+  dynamic_.push_back({bone_matrix(a, b, thickness_m), glm::vec4(colour, 3.0f)});
 }
 
 void Renderer::upload_and_draw(unsigned vao, unsigned vbo, size_t& capacity,

@@ -33,6 +33,9 @@ class Renderer {
   /// Like add_avatar, with joint positions lerped `alpha` of the way to `next` (fractional frames).
   void add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next, float alpha,
                   vec3 colour);
+  /// Adds an overlay line from `a` to `b`: a thin unlit box (the exact `colour` from every side,
+  /// so overlays read on any background).
+  void add_line(vec3 a, vec3 b, float thickness_m, vec3 colour);
   /// Clears the viewport (width x height pixels) and draws the scene and the frame's avatars.
   void draw(int width, int height, const glm::mat4& view, const glm::mat4& projection);
 
@@ -41,7 +44,7 @@ class Renderer {
  private:
   struct Instance {
     glm::mat4 model;
-    glm::vec4 colour;  ///< a = 1: plain; a = 2: floor grid.
+    glm::vec4 colour;  ///< a = 1: plain; a = 2: floor grid; a = 3: unlit (overlay lines).
   };
   void add_bones(const MotionLibrary& library, vec3 colour);
   void upload_and_draw(unsigned vao, unsigned vbo, size_t& capacity, const std::vector<Instance>& v);

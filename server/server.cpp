@@ -216,7 +216,8 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
     case Message::Input:
     case Message::Heartbeat:
     case Message::Disconnect:
-    case Message::StatsRequest: break;
+    case Message::StatsRequest:
+    case Message::TreeRequest: break;
     default: counters_.drops.add(protocol::DropReason::kUnexpected); return;
   }
   // In-session messages: the sender must be a player and name its session.
@@ -226,6 +227,7 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
   if (auto* m = packet.message_as_Heartbeat()) session = m->session();
   if (auto* m = packet.message_as_Disconnect()) session = m->session();
   if (auto* m = packet.message_as_StatsRequest()) session = m->session();
+  if (auto* m = packet.message_as_TreeRequest()) session = m->session();
   if (p == nullptr || p->session != session) {
     counters_.drops.add(protocol::DropReason::kUnexpected);
     return;
@@ -244,6 +246,7 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
     case Message::Input: on_input(*p, *packet.message_as_Input()); break;
     case Message::Heartbeat: p->echo_client_time_ms = packet.message_as_Heartbeat()->client_time_ms(); break;
     case Message::StatsRequest: send_stats(*p); break;
+    case Message::TreeRequest: send_tree(*p); break;
     case Message::Disconnect:
       ++counters_.sessions_closed;
       for (size_t i = 0; i < players_.size(); ++i)
@@ -430,6 +433,11 @@ void Server::send_stats(const Player& p) {
   b.add_packets_dropped(counters_.drops.total());
   b.add_avatar_contacts(counters_.avatar_contacts);
   send(writer_.finish(b.Finish()), p.endpoint);
+}
+
+void Server::send_tree(Player& p) {
+  // Only ever the requester's own tree: the session named in the request is the player's.
+  send(tree_summary_.write(writer_, p.avatar->tree(), tick_, p.avatar_id), p.endpoint);
 }
 
 void Server::send_snapshots(Clock::time_point now) {

@@ -1,8 +1,8 @@
 #pragma once
 // The authoritative server (docs/SERVER.md). One UDP socket, a fixed tick:
 //
-//   receive   drain the socket: handshakes, inputs, heartbeats, stats requests; every datagram
-//             verified first, bad ones dropped and counted by reason
+//   receive   drain the socket: handshakes, inputs, heartbeats, stats and tree requests; every
+//             datagram verified first, bad ones dropped and counted by reason
 //   expire    drop sessions silent for session_timeout_s (their avatars go with them)
 //   advance   play each avatar's clip frames due this tick; at a segment end it takes its tree's
 //             best child that keeps clear of the other avatars' committed motion (reservations)
@@ -20,6 +20,7 @@
 #include "protocol/udp_socket.hpp"
 #include "server_config.hpp"
 #include "tick_stats.hpp"
+#include "tree_summary.hpp"
 #include "world/collision_world.hpp"
 #include "world/scene.hpp"
 
@@ -103,6 +104,7 @@ class Server {
   void send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message);
   void send_accept(const Player& p);
   void send_stats(const Player& p);
+  void send_tree(Player& p);
   void expire(Clock::time_point now);
   void remove_player(size_t index);
   void advance();
@@ -133,6 +135,7 @@ class Server {
   Reservations reservations_;
   std::unique_ptr<LookaheadWorkers> workers_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
+  TreeSummaryWriter tree_summary_;                  ///< Reused for every TreeRequest.
   std::vector<double> grow_weight_;                 ///< Per player, reused.
   std::vector<int64_t> grow_expansions_;            ///< Per player, this tick.
   std::vector<Clock::time_point> grow_deadline_;    ///< Per worker.

@@ -1,6 +1,7 @@
 #include "protocol/client_connection.hpp"
 
 #include "protocol/input_packet.hpp"
+#include "protocol/quantize.hpp"
 
 #include <algorithm>
 #include <cinttypes>
@@ -54,6 +55,10 @@ const char* client_state_name(ClientState state) {
 
 ClientConnection::ClientConnection(const ClientConfig& config) : config_(config) {
   avatars_.reserve(config_.reserve_avatars);
+  tree_.end_m.reserve(kMaxTreeSamples);
+  tree_.parent.reserve(kMaxTreeSamples);
+  tree_.depth.reserve(kMaxTreeSamples);
+  tree_.chosen.reserve(kMaxTreeSamples);
 }
 
 bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std::string name,
@@ -81,6 +86,7 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   has_snapshot_ = has_own_avatar_ = false;
   snapshot_parts_seen_.reset();
   avatars_.clear();
+  tree_count_ = 0;
   newest_echo_ms_ = 0;
   sent_times_.fill({});
   set_state(ClientState::kConnecting, "connecting to " + endpoint_text(server_) + " ...");
@@ -156,6 +162,11 @@ void ClientConnection::handle(const wire::Packet& packet, TimePoint now) {
       if (!connected) break;
       last_heard_ = now;
       on_stats(*packet.message_as_ServerStats());
+      return;
+    case wire::Message::TreeSummary:
+      if (!connected) break;
+      last_heard_ = now;
+      on_tree(*packet.message_as_TreeSummary());
       return;
     case wire::Message::Disconnect:
       if (connected && packet.message_as_Disconnect()->session() == accept_.session) {
@@ -303,6 +314,41 @@ void ClientConnection::on_stats(const wire::ServerStats& m) {
   ++stats_count_;
 }
 
+void ClientConnection::on_tree(const wire::TreeSummary& m) {
+  const auto* sampled = m.sampled();
+  const size_t n = sampled ? sampled->size() : 0;
+  if (n > kMaxTreeSamples) {
+    drops_.add(DropReason::kInvalidInput);
+    return;
+  }
+  // A parent must come before its child: drawing walks the arrays once.
+  for (size_t i = 0; i < n; ++i) {
+    const uint16_t parent = sampled->Get(static_cast<flatbuffers::uoffset_t>(i))->parent();
+    if (parent != kTreeNoParent && parent >= i) {
+      drops_.add(DropReason::kInvalidInput);
+      return;
+    }
+  }
+  tree_.tick = m.tick();
+  tree_.avatar = m.avatar();
+  tree_.nodes = m.nodes();
+  tree_.origin_m = vec2(dequantize_mm(m.origin_x_mm()), dequantize_mm(m.origin_z_mm()));
+  tree_.chosen_child_end_m =
+      vec2(dequantize_mm(m.chosen_child_end_x_mm()), dequantize_mm(m.chosen_child_end_z_mm()));
+  tree_.end_m.resize(n);
+  tree_.parent.resize(n);
+  tree_.depth.resize(n);
+  tree_.chosen.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    const wire::TreeNodeSample* s = sampled->Get(static_cast<flatbuffers::uoffset_t>(i));
+    tree_.end_m[i] = tree_.origin_m + 0.01f * vec2(static_cast<float>(s->dx_cm()), static_cast<float>(s->dz_cm()));
+    tree_.parent[i] = s->parent();
+    tree_.depth[i] = s->depth();
+    tree_.chosen[i] = (s->flags() & kTreeNodeChosen) != 0 ? 1 : 0;
+  }
+  ++tree_count_;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Sending.
 
@@ -376,6 +422,10 @@ void ClientConnection::set_input(const ControlInput& input) {
 
 void ClientConnection::request_stats() {
   if (state_ == ClientState::kConnected) send(write_stats_request(writer_, accept_.session));
+}
+
+void ClientConnection::request_tree() {
+  if (state_ == ClientState::kConnected) send(write_tree_request(writer_, accept_.session));
 }
 
 void ClientConnection::disconnect() {

@@ -82,6 +82,21 @@ struct ServerFigures {
   uint64_t packets_in = 0, packets_dropped = 0, avatar_contacts = 0;
 };
 
+/// A copy of the newest TreeSummary (schema/foresight.fbs): the player's own feasible motion tree,
+/// sampled. Node positions are world ground positions in metres (x, z).
+struct TreeView {
+  uint32_t tick = 0;
+  uint32_t avatar = 0;
+  uint32_t nodes = 0;        ///< In the whole tree on the server.
+  vec2 origin_m{0.0f};       ///< Where the root segment started.
+  vec2 chosen_child_end_m{0.0f};
+  std::vector<vec2> end_m;         ///< Per sampled node: its end ground position. [0] = the root.
+  std::vector<uint16_t> parent;    ///< Per sampled node: sample index of its parent, kTreeNoParent.
+  std::vector<uint8_t> depth;      ///< Per sampled node: depth below the root.
+  std::vector<uint8_t> chosen;     ///< Per sampled node: 1 on the branch the tree would select now.
+  size_t size() const { return end_m.size(); }
+};
+
 class ClientConnection {
  public:
   using Clock = std::chrono::steady_clock;
@@ -113,6 +128,8 @@ class ClientConnection {
   void set_input(const ControlInput& input);
   /// Asks the server for its ServerStats (answered asynchronously: see server_stats_count()).
   void request_stats();
+  /// Asks the server for a summary of our feasible motion tree (see tree_count()).
+  void request_tree();
   /// Ends the session: sends Disconnect three times (it is not acknowledged), then kClosed.
   void disconnect();
 
@@ -161,6 +178,9 @@ class ClientConnection {
   /// The newest ServerStats, valid when server_stats_count() > 0.
   const ServerFigures& server_stats() const { return stats_; }
   uint64_t server_stats_count() const { return stats_count_; }
+  /// The newest TreeSummary, valid when tree_count() > 0.
+  const TreeView& tree() const { return tree_; }
+  uint64_t tree_count() const { return tree_count_; }
 
  private:
   void handle(const wire::Packet& packet, TimePoint now);
@@ -169,6 +189,7 @@ class ClientConnection {
   void on_refuse(const wire::Refuse& m);
   void on_snapshot(const wire::Snapshot& m, TimePoint now);
   void on_stats(const wire::ServerStats& m);
+  void on_tree(const wire::TreeSummary& m);
   void send_handshake(TimePoint now);
   void send_input(TimePoint now);
   void send(std::span<const uint8_t> datagram);
@@ -236,6 +257,8 @@ class ClientConnection {
   DropCounters drops_;
   ServerFigures stats_;
   uint64_t stats_count_ = 0;
+  TreeView tree_;  ///< Node arrays reserved for kMaxTreeSamples once.
+  uint64_t tree_count_ = 0;
 };
 
 }  // namespace foresight::protocol

@@ -89,4 +89,9 @@ std::span<const uint8_t> write_stats_request(PacketWriter& w, uint32_t session) 
   return w.finish(wire::CreateStatsRequest(fbb, session));
 }
 
+std::span<const uint8_t> write_tree_request(PacketWriter& w, uint32_t session) {
+  auto& fbb = w.begin();
+  return w.finish(wire::CreateTreeRequest(fbb, session));
+}
+
 }  // namespace foresight::protocol

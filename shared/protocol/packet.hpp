@@ -71,5 +71,6 @@ std::span<const uint8_t> write_connect_response(PacketWriter& w, uint64_t librar
 std::span<const uint8_t> write_heartbeat(PacketWriter& w, uint32_t session, uint32_t client_time_ms);
 std::span<const uint8_t> write_disconnect(PacketWriter& w, uint32_t session);
 std::span<const uint8_t> write_stats_request(PacketWriter& w, uint32_t session);
+std::span<const uint8_t> write_tree_request(PacketWriter& w, uint32_t session);
 
 }  // namespace foresight::protocol

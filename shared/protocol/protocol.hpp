@@ -29,4 +29,13 @@ enum AvatarFlags : uint8_t {
   kAvatarNpc = 1u << 2,       ///< Server-controlled.
 };
 
+/// Most nodes one TreeSummary samples: 8 bytes each, so the packet stays under kMaxDatagramBytes.
+inline constexpr size_t kMaxTreeSamples = 128;
+/// TreeNodeSample::parent of the root.
+inline constexpr uint16_t kTreeNoParent = 0xFFFF;
+/// TreeNodeSample::flags bits.
+enum TreeNodeFlags : uint8_t {
+  kTreeNodeChosen = 1u << 0,  ///< On the branch the tree would select now.
+};
+
 }  // namespace foresight::protocol

@@ -68,36 +68,41 @@ struct Image {
   ~Image() { stbi_image_free(pixels); }
 };
 
-TEST(ClientScreenshot, ShowsTheSceneAndThePlayersAvatar) {
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps installs it)";
+// Runs a server (maze) and three bots, then the client under Xvfb with `client_args`, writing
+// `name`.png in the scratch folder; loads it into `img`.
+void run_client_screenshot(const std::string& name, const std::string& client_args, Image& img) {
   const std::filesystem::path dir = foresight::test::scratch_dir();
   const int port = free_udp_port();
   ASSERT_GT(port, 0);
   const std::string server_address = "127.0.0.1:" + std::to_string(port);
   const pid_t server = spawn({bin("foresight-server"), "--scene", "maze", "--port", std::to_string(port),
                               "--seconds", "120"},
-                             (dir / "server.log").string());
+                             (dir / (name + "-server.log")).string());
   ASSERT_GT(server, 0);
   const pid_t bots = spawn({bin("foresight-bots"), "--server", server_address, "--count", "3",
                             "--seconds", "120"},
-                           (dir / "bots.log").string());
-  const std::string shot = (dir / "shot.png").string();
+                           (dir / (name + "-bots.log")).string());
+  const std::string shot = (dir / (name + ".png")).string();
+  const std::string log = (dir / (name + "-client.log")).string();
   // Mesa leaks a few bytes at exit: keep LeakSanitizer quiet in sanitizer builds.
   const std::string command = "ASAN_OPTIONS=detect_leaks=0 timeout 120 xvfb-run -a -s '-screen 0 1280x720x24' " +
                               bin("foresight-client") + " --server " + server_address +
-                              " --screenshot " + shot + " --frames 60 --timeout 60 > " +
-                              (dir / "client.log").string() + " 2>&1";
+                              " --screenshot " + shot + " --frames 60 --timeout 60 " + client_args +
+                              " > " + log + " 2>&1";
   const int status = std::system(command.c_str());
   stop(bots);
   stop(server);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
-      << "client failed; see " << (dir / "client.log").string();
-
-  Image img;
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "client failed; see " << log;
   int channels = 0;
   img.pixels = stbi_load(shot.c_str(), &img.w, &img.h, &channels, 3);
   ASSERT_NE(img.pixels, nullptr) << "cannot read " << shot;
+}
+
+TEST(ClientScreenshot, ShowsTheSceneAndThePlayersAvatar) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps installs it)";
+  Image img;
+  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("shot", "", img));
   EXPECT_EQ(img.w, 1280);
   EXPECT_EQ(img.h, 720);
   const size_t n = static_cast<size_t>(img.w) * static_cast<size_t>(img.h);
@@ -110,6 +115,32 @@ TEST(ClientScreenshot, ShowsTheSceneAndThePlayersAvatar) {
   }
   EXPECT_GT(differs, n / 4) << "the image is (nearly) uniform";
   EXPECT_GT(orange, 20u) << "the player's avatar colour does not appear";
+}
+
+// Counts pixels within `tolerance` of an exact (unlit) colour.
+size_t count_colour(const Image& img, int r0, int g0, int b0, int tolerance = 12) {
+  const size_t n = static_cast<size_t>(img.w) * static_cast<size_t>(img.h);
+  size_t count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const int r = img.pixels[3 * i], g = img.pixels[3 * i + 1], b = img.pixels[3 * i + 2];
+    if (std::abs(r - r0) <= tolerance && std::abs(g - g0) <= tolerance && std::abs(b - b0) <= tolerance) ++count;
+  }
+  return count;
+}
+
+TEST(ClientScreenshot, TheTreeOverlayDrawsTheTreeAndItsChosenBranch) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps installs it)";
+  Image plain, overlay;
+  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("tree-off", "", plain));
+  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("tree-overlay", "--tree-overlay", overlay));
+  // The overlay's unlit colours (client_app.cpp): cyan (0.10, 0.85, 0.85) for the tree, yellow
+  // (1.00, 0.95, 0.10) for the chosen branch. Without the overlay neither appears.
+  const size_t tree = count_colour(overlay, 26, 217, 217), chosen = count_colour(overlay, 255, 242, 26);
+  EXPECT_GT(tree, 30u) << "the tree's lines do not appear";
+  EXPECT_GT(chosen, 10u) << "the chosen branch is not highlighted";
+  EXPECT_LT(count_colour(plain, 26, 217, 217) + count_colour(plain, 255, 242, 26), 10u)
+      << "the overlay colours appear without the overlay";
 }
 
 }  // namespace

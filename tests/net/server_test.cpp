@@ -194,6 +194,74 @@ TEST(Server, ADisconnectEndsTheSessionAtOnce) {
   EXPECT_EQ(r.server.counters().sessions_closed, 1u);
 }
 
+TEST(Server, ATreeRequestGetsASummaryOfTheRequestersOwnTree) {
+  Running r("arena");
+  RawClient c(r.server.port()), other(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  ASSERT_TRUE(other.connect(r.server, r.now, r.server.library().content_hash));
+  const float facing = r.server.avatar(c.avatar)->root().heading_rad;
+  uint32_t seq = 1;
+  for (int i = 0; i < 90; ++i) {  // 3 s walking: a grown tree
+    c.send_input(vec2(0.0f, 1.0f), seq++, facing);
+    other.send_input(vec2(0.0f), seq);
+    r.ticks(1);
+  }
+  c.receive_all();
+  other.receive_all();
+  c.send(protocol::write_tree_request(c.writer_, c.session));
+  r.ticks(1);
+  const vec2 avatar_at = r.server.avatar(c.avatar)->root().pos_m;
+  const auto reply = c.receive(wire::Message::TreeSummary);
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_LE(reply->size(), protocol::kMaxDatagramBytes);
+  protocol::DropReason reason;
+  const wire::TreeSummary* t = protocol::packet_read(*reply, reason)->message_as_TreeSummary();
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(t->avatar(), c.avatar);
+  EXPECT_GT(t->nodes(), 1u);
+  ASSERT_NE(t->sampled(), nullptr);
+  const auto& nodes = *t->sampled();
+  ASSERT_GT(nodes.size(), 1u);
+  EXPECT_LE(nodes.size(), protocol::kMaxTreeSamples);
+  EXPECT_LE(nodes.size(), t->nodes());
+  const vec2 origin(protocol::dequantize_mm(t->origin_x_mm()), protocol::dequantize_mm(t->origin_z_mm()));
+  EXPECT_EQ(nodes.Get(0)->parent(), protocol::kTreeNoParent);
+  EXPECT_EQ(nodes.Get(0)->depth(), 0);
+  EXPECT_EQ(nodes.Get(0)->flags() & protocol::kTreeNodeChosen, 0) << "the root is not part of the choice";
+  int chosen = 0;
+  uint16_t previous_chosen = 0;  // the chosen branch starts at a child of the root (sample 0)
+  for (uint32_t i = 0; i < nodes.size(); ++i) {
+    const wire::TreeNodeSample* n = nodes.Get(i);
+    const vec2 end = origin + 0.01f * vec2(static_cast<float>(n->dx_cm()), static_cast<float>(n->dz_cm()));
+    EXPECT_LT(glm::length(end - avatar_at), 10.0f) << "node " << i;
+    if (i == 0) continue;
+    ASSERT_LT(n->parent(), i) << "parents come first";
+    EXPECT_EQ(n->depth(), nodes.Get(n->parent())->depth() + 1);
+    if (n->flags() & protocol::kTreeNodeChosen) {
+      EXPECT_EQ(n->parent(), previous_chosen) << "the chosen nodes form one branch from the root";
+      if (chosen == 0) {
+        EXPECT_NEAR(end.x, protocol::dequantize_mm(t->chosen_child_end_x_mm()), 0.011f);
+        EXPECT_NEAR(end.y, protocol::dequantize_mm(t->chosen_child_end_z_mm()), 0.011f);
+      }
+      previous_chosen = static_cast<uint16_t>(i);
+      ++chosen;
+    }
+  }
+  EXPECT_GE(chosen, 1) << "a chosen branch is marked";
+  other.receive_all();  // its snapshots
+
+  // Another player's session, sent from another address, or a made-up session: dropped.
+  const uint64_t unexpected_before =
+      r.server.counters().drops.by_reason[static_cast<size_t>(protocol::DropReason::kUnexpected)];
+  other.send(protocol::write_tree_request(other.writer_, c.session));
+  c.send(protocol::write_tree_request(c.writer_, c.session + 1000));
+  r.ticks(1);
+  EXPECT_FALSE(other.receive(wire::Message::TreeSummary).has_value());
+  EXPECT_FALSE(c.receive(wire::Message::TreeSummary).has_value());
+  EXPECT_EQ(r.server.counters().drops.by_reason[static_cast<size_t>(protocol::DropReason::kUnexpected)],
+            unexpected_before + 2);
+}
+
 TEST(Server, TheTickIsDeterministicGivenTheSameInputs) {
   // Two servers (one and two look-ahead threads), the same inputs at the same ticks, expansion
   // budgets: the same avatars, bit for bit.

@@ -373,6 +373,58 @@ TEST_F(ClientConnectionTest, StatsAndDisconnect) {
   EXPECT_EQ(disconnects, 3);
 }
 
+TEST_F(ClientConnectionTest, TreeSummariesAreCopiedAndBadOnesDropped) {
+  connect();
+  client_.request_tree();
+  const auto* request = server_.receive_a<wire::TreeRequest>();
+  ASSERT_NE(request, nullptr);
+  EXPECT_EQ(request->session(), 5u);
+  auto send_tree = [&](std::vector<wire::TreeNodeSample> nodes) {
+    auto& w = server_.writer();
+    auto& fbb = w.begin();
+    const auto sampled = fbb.CreateVectorOfStructs(nodes.data(), nodes.size());
+    server_.send(w.finish(wire::CreateTreeSummary(fbb, 77, 3, 500, 1500, 2000, 1000, 2000, sampled)));
+  };
+  // Root ends 50 cm ahead of the origin; a chosen child and an ordinary one below it.
+  send_tree({wire::TreeNodeSample(0, 50, kTreeNoParent, 0, 0), wire::TreeNodeSample(50, 100, 0, 1, kTreeNodeChosen),
+             wire::TreeNodeSample(-50, 100, 0, 1, 0)});
+  deliver(client_, at(200));
+  ASSERT_EQ(client_.tree_count(), 1u);
+  const TreeView& t = client_.tree();
+  EXPECT_EQ(t.tick, 77u);
+  EXPECT_EQ(t.avatar, 3u);
+  EXPECT_EQ(t.nodes, 500u);
+  ASSERT_EQ(t.size(), 3u);
+  EXPECT_NEAR(t.origin_m.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(t.end_m[0].y, 2.5f, 1e-5f);
+  EXPECT_NEAR(t.end_m[1].x, 1.5f, 1e-5f);
+  EXPECT_NEAR(t.chosen_child_end_m.x, 1.5f, 1e-6f);
+  EXPECT_EQ(t.parent[0], kTreeNoParent);
+  EXPECT_EQ(t.parent[2], 0u);
+  EXPECT_EQ(t.chosen[1], 1u);
+  EXPECT_EQ(t.chosen[2], 0u);
+  // A parent that does not come before its node: dropped, the previous summary kept.
+  const uint64_t invalid = client_.drops().by_reason[static_cast<size_t>(DropReason::kInvalidInput)];
+  send_tree({wire::TreeNodeSample(0, 0, kTreeNoParent, 0, 0), wire::TreeNodeSample(0, 0, 1, 1, 0)});
+  deliver(client_, at(250));
+  EXPECT_EQ(client_.tree_count(), 1u);
+  EXPECT_EQ(client_.tree().size(), 3u);
+  EXPECT_EQ(client_.drops().by_reason[static_cast<size_t>(DropReason::kInvalidInput)], invalid + 1);
+  // A full-size summary: copied into the reserved arrays without allocating.
+  std::vector<wire::TreeNodeSample> full(kMaxTreeSamples, wire::TreeNodeSample(1, 1, 0, 1, 0));
+  full[0] = wire::TreeNodeSample(0, 0, kTreeNoParent, 0, 0);
+  send_tree(full);
+  pollfd p{client_.socket_fd(), POLLIN, 0};
+  ::poll(&p, 1, 1000);
+  {
+    test::AllocationCount counting;
+    client_.poll(at(300));
+    EXPECT_EQ(counting.allocations(), 0);
+  }
+  EXPECT_EQ(client_.tree_count(), 2u);
+  EXPECT_EQ(client_.tree().size(), kMaxTreeSamples);
+}
+
 TEST(AllocationCount, SeesAnAllocation) {
   test::AllocationCount counting;
   std::vector<int> v(static_cast<size_t>(counting.allocations() + 100));
