@@ -3,8 +3,10 @@
 #include "avatar_decode.hpp"
 #include "camera_rig.hpp"
 #include "client_input.hpp"
+#include "debug_overlay.hpp"
 #include "renderer.hpp"
 #include "screenshot.hpp"
+#include "script_input.hpp"
 #include "snapshot_buffer.hpp"
 
 #include "library/playback.hpp"
@@ -82,6 +84,7 @@ class Session {
       : window_(window), library_(library), options_(options), connection_(connection_config()),
         buffer_(buffer_config(options)) {
     tree_overlay_ = options.tree_overlay;
+    if (options.follow_camera) rig_.toggle_follow();
     shown_.reserve(256);
     entries_.reserve(256);
     pose_.resize(library.num_joints());
@@ -90,7 +93,8 @@ class Session {
     glfwSetKeyCallback(window_, on_key);
   }
 
-  bool init(std::string& error) { return renderer_.init(error); }
+  // The overlay after the constructor set our GLFW callbacks: ImGui chains to them.
+  bool init(std::string& error) { return renderer_.init(error) && overlay_.init(window_, error); }
 
   /// One frame. Returns false when the program should end (exit status in `status`).
   bool frame(int& status);
@@ -118,6 +122,7 @@ class Session {
   SnapshotBuffer buffer_;
   CameraRig rig_;
   Renderer renderer_;
+  DebugOverlay overlay_;  ///< F1; drawn over the scene (also in screenshots).
   Scene scene_;
   std::string scene_name_;
   Clock::time_point start_ = Clock::now();
@@ -131,6 +136,8 @@ class Session {
   int shot_frames_ = 0;
   bool tree_overlay_ = false, tree_key_down_ = false;
   double next_tree_request_s_ = 0;
+  double connected_at_s_ = 0;  ///< When the connection was last made (the script's time 0).
+  bool script_end_reported_ = false;
 
   std::vector<AvatarEntry> entries_;
   std::vector<ShownAvatar> shown_;
@@ -173,7 +180,11 @@ void Session::connection_step(Clock::time_point now, double t) {
     }
   }
   const bool connected = connection_.connected();
-  if (connected && !was_connected_) on_connected();
+  if (connected && !was_connected_) {
+    on_connected();
+    connected_at_s_ = t;
+    script_end_reported_ = false;
+  }
   was_connected_ = connected;
   const ClientState after = connection_.state();
   if (after != ClientState::kConnecting && after != ClientState::kConnected && !reported_down_) {
@@ -271,20 +282,38 @@ bool Session::frame(int& status) {
   draw_avatars(t, own_pos, own_heading, own_seen);
   tree_overlay_step(t);
   rig_.update(own_pos, own_heading, dt);
-  if (connection_.connected()) connection_.set_input(control_from_keys(held_keys(window_), rig_.yaw_rad()));
+  if (connection_.connected()) {
+    if (options_.script) {  // --script: the recording steers, the keyboard is ignored
+      const double script_t = t - connected_at_s_;
+      connection_.set_input(script_input_at(*options_.script, script_t));
+      if (script_ended(*options_.script, script_t) && !script_end_reported_) {
+        std::fprintf(stderr, "foresight-client: script ended after %.1f s; input is stop\n", script_t);
+        script_end_reported_ = true;
+      }
+    } else {
+      // Keys go to ImGui instead only while one of its widgets is active.
+      connection_.set_input(control_from_keys(overlay_.wants_keyboard() ? HeldKeys{} : held_keys(window_), rig_.yaw_rad()));
+    }
+  }
 
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);  // follows resizes
   if (width > 0 && height > 0) {                     // 0: minimised, nothing to draw
     renderer_.draw(width, height, rig_.view(),
                    rig_.projection(static_cast<float>(width) / static_cast<float>(height)));
+    overlay_.frame(connection_, t, tree_overlay_);
   }
 
   if (!options_.screenshot_path.empty()) {
     // Count only frames that show the player among received snapshots.
     // With the tree overlay on, also wait for the first tree summary.
-    if (own_seen && buffer_.size() >= 2 && (!tree_overlay_ || connection_.tree_count() > 0)) ++shot_frames_;
-    if (shot_frames_ >= options_.frames) {
+    // With --screenshot-at-s, the shot waits for that much time since connecting instead.
+    const bool ready = own_seen && buffer_.size() >= 2 && (!tree_overlay_ || connection_.tree_count() > 0);
+    if (ready) ++shot_frames_;
+    const bool shoot = options_.screenshot_at_s > 0
+                           ? ready && connection_.connected() && t - connected_at_s_ >= options_.screenshot_at_s
+                           : shot_frames_ >= options_.frames;
+    if (shoot) {
       std::string error;
       glReadBuffer(GL_BACK);
       if (!write_framebuffer_png(options_.screenshot_path, width, height, error)) {

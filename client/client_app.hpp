@@ -1,9 +1,11 @@
 #pragma once
 // The interactive client: a GLFW window, the connection to the server, the snapshot buffer, the
 // cameras and the renderer, driven one frame at a time (docs/CLIENT.md).
+#include "lookahead/recording.hpp"
 #include "protocol/udp_socket.hpp"
 
 #include <atomic>
+#include <optional>
 #include <string>
 
 namespace foresight {
@@ -23,6 +25,12 @@ struct ClientOptions {
   double screenshot_timeout_s = 30;  ///< Screenshot mode: give up when nothing arrives by then.
   double reconnect_interval_s = 2.0;
   bool tree_overlay = false;  ///< Start with the feasible-motion-tree overlay on (key T toggles).
+  bool follow_camera = false;  ///< Start with the follow camera on (key F toggles).
+  /// --script: the player's input comes from this recording (sample-and-hold from the moment the
+  /// client is connected; stop once it ends), the keyboard's steering keys are ignored.
+  std::optional<Recording> script;
+  /// Screenshot mode: > 0 takes the shot this many seconds after connecting (instead of `frames`).
+  double screenshot_at_s = 0;
 };
 
 /// Runs until the window closes, Escape, `stop` or (screenshot mode) the PNG is written.

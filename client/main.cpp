@@ -1,6 +1,7 @@
 // foresight-client: the interactive client (docs/CLIENT.md).
 //   foresight-client --server 127.0.0.1:7777 [--motions DIR] [--delay-ms 100]
-//                    [--screenshot out.png --frames N] [--tree-overlay]
+//                    [--screenshot out.png --frames N | --screenshot-at-s S] [--tree-overlay]
+//                    [--follow-camera] [--script recording.json]
 // Arrows / WASD steer in camera space, C crouches, F toggles the follow camera, T the
 // feasible-motion-tree overlay, Escape quits.
 #include "client_app.hpp"
@@ -13,6 +14,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <utility>
 
 namespace {
 
@@ -36,11 +38,19 @@ int main(int argc, char** argv) {
   app.add_option("--height", options.height, "Window height")->check(CLI::Range(64, 8192))->capture_default_str();
   app.add_flag("--tree-overlay", options.tree_overlay,
                "Start with the feasible-motion-tree overlay on (key T toggles it)");
+  app.add_flag("--follow-camera", options.follow_camera, "Start with the follow camera on (key F toggles it)");
+  std::string script_path;
+  app.add_option("--script", script_path,
+                 "Steer from this recording (docs/RECORDINGS.md format) instead of the keyboard, "
+                 "from the moment the client is connected; stop once it ends");
   app.add_option("--screenshot", options.screenshot_path,
                  "Render --frames frames once our avatar shows, write this PNG and exit");
   app.add_option("--frames", options.frames, "Frames before the screenshot")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  app.add_option("--screenshot-at-s", options.screenshot_at_s,
+                 "Screenshot mode: take the shot this many seconds after connecting (instead of --frames)")
+      ->check(CLI::Range(0.0, 100000.0));
   app.add_option("--timeout", options.screenshot_timeout_s,
                  "Screenshot mode: give up (exit 1) after this many seconds")
       ->capture_default_str();
@@ -54,6 +64,14 @@ int main(int argc, char** argv) {
   if (!protocol::parse_endpoint(options.server_text, options.server, error)) {
     std::fprintf(stderr, "foresight-client: --server: %s\n", error.c_str());
     return 1;
+  }
+  if (!script_path.empty()) {
+    Recording script;
+    if (!recording_load(script_path, script, error)) {
+      std::fprintf(stderr, "foresight-client: --script: %s\n", error.c_str());
+      return 1;
+    }
+    options.script = std::move(script);
   }
   MotionLibrary library;
   if (!motion_library_load(source, library, error)) {
