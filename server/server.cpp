@@ -582,25 +582,32 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
   // Each worker spends up to budget_ms in parallel: its avatars' shares add up to its time.
   const double per_weight_ms = budget_ms * workers / total;
   const Clock::time_point end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
-  workers_->run(static_cast<int>(n), [&](int item, int) {
+  // Two pointers captured: the job fits std::function's inline storage (no allocation per tick).
+  const struct {
+    double per_weight_ms;
+    Clock::time_point end;
+  } phase{per_weight_ms, end};
+  workers_->run(static_cast<int>(n), [this, &phase](int item, int) {
     Player& p = *players_[static_cast<size_t>(item)];
     LookaheadAvatar& a = *p.avatar;
-    // Command matching measures v_k from where the avatar stands and strategies 1 and 4 re-sort
-    // the leaves (about 25 ns a node): at once when the command changes, just before a decision,
-    // and otherwise every resort_interval_ticks (1 = every tick, as the lab's replay does every
-    // frame). On the look-ahead threads, never per packet.
-    // The periodic re-sort is the first thing dropped when the tick runs late.
     GrowBudget budget;
     const bool timed = config_.expansions_per_avatar <= 0;
     if (timed) {
-      const auto slice = std::chrono::duration<double, std::milli>(per_weight_ms * grow_weight_[static_cast<size_t>(item)]);
-      budget = GrowBudget::until(std::min(end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
+      const auto slice =
+          std::chrono::duration<double, std::milli>(phase.per_weight_ms * grow_weight_[static_cast<size_t>(item)]);
+      budget = GrowBudget::until(std::min(phase.end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
     } else {
       budget = GrowBudget::expansions(config_.expansions_per_avatar);
     }
+    // Command matching measures v_k from where the avatar stands and strategies 1 and 4 re-sort
+    // the leaves (about 25 ns a node): at once when the command changes, just before a decision,
+    // and otherwise every resort_interval_ticks (1 = every tick, as the lab's replay does every
+    // frame). On the look-ahead threads, never per packet. The periodic re-sort is the first
+    // thing dropped when the tick runs late.
     const int frames_left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() -
                             a.playback().frame;
-    const bool periodic = (tick_ + p.avatar_id) % config_.resort_interval_ticks == 0 && (!timed || Clock::now() < end);
+    const bool periodic =
+        (tick_ + p.avatar_id) % config_.resort_interval_ticks == 0 && (!timed || Clock::now() < phase.end);
     if (p.input_changed || frames_left <= 1 || periodic) {
       a.set_input(p.input);
       p.input_changed = false;
