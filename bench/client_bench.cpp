@@ -3,9 +3,9 @@
 // transition), one frame per 30 Hz server tick, as the server plays them; a snapshot of all of
 // them is pushed into the client's SnapshotBuffer 20 times a second (arriving 40-50 ms later).
 // Render frames at 60 fps then time (1) SnapshotBuffer::sample at the frame's render time and
-// (2) the pose rebuild, exactly Session::draw_avatars (client_app.cpp): playback_pose (which is
-// motion_library_sample), for a fractional frame playback_pose of the next frame too, and
-// Renderer::add_avatar (FK with fk_pose, joint lerp, one instance matrix per bone). The Renderer
+// (2) the pose rebuild, the same call as Session::draw_avatars (client_app.cpp):
+// Renderer::add_avatar (playback_pose, i.e. motion_library_sample, and for a fractional frame the
+// next frame's too; FK with fk_pose, joint lerp, one instance matrix per bone). The Renderer
 // is used without a GL context: add_avatar touches no GL; the GPU upload and draw are not timed.
 // Snapshot pushes and the simulated server are outside the timed sections; nothing allocates in
 // them once warm (warm-up frames run first).
@@ -71,7 +71,6 @@ int bench_client(const ClientBenchOptions& o) {
   std::vector<client::ShownAvatar> shown;
   shown.reserve(n);
   client::Renderer renderer;  // no init(): no GL objects, nothing to delete
-  Pose pose, next_pose;
   const vec3 colour(0.3f, 0.5f, 0.9f);
 
   // Snapshots in flight: (arrival local time, server time, copy of the avatars); at most a few.
@@ -130,17 +129,7 @@ int bench_client(const ClientBenchOptions& o) {
     buffer.sample(lib, buffer.render_time(local_now), shown);
     const auto b = Clock::now();
     renderer.begin_frame();
-    for (const client::ShownAvatar& s : shown) {
-      playback_pose(lib, s.state, pose);
-      if (s.frame_alpha > 0.0f) {
-        PlaybackState next = s.state;
-        next.frame += 1;
-        playback_pose(lib, next, next_pose);
-        renderer.add_avatar(lib, pose, next_pose, s.frame_alpha, colour);
-      } else {
-        renderer.add_avatar(lib, pose, colour);
-      }
-    }
+    for (const client::ShownAvatar& s : shown) renderer.add_avatar(lib, s.state, s.frame_alpha, colour);
     const auto c = Clock::now();
     if (!measured) continue;
     sample_us.push_back(std::chrono::duration<double, std::micro>(b - a).count());

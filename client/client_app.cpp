@@ -87,8 +87,6 @@ class Session {
     if (options.follow_camera) rig_.toggle_follow();
     shown_.reserve(256);
     entries_.reserve(256);
-    pose_.resize(library.num_joints());
-    next_pose_.resize(library.num_joints());
     glfwSetWindowUserPointer(window_, &rig_);
     glfwSetKeyCallback(window_, on_key);
   }
@@ -141,7 +139,6 @@ class Session {
 
   std::vector<AvatarEntry> entries_;
   std::vector<ShownAvatar> shown_;
-  Pose pose_, next_pose_;
 };
 
 void Session::on_connected() {
@@ -211,15 +208,7 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
   const uint32_t own_id = connection_.accept().avatar;
   for (const ShownAvatar& a : shown_) {
     const vec3 colour = colour_of(a, own_id);
-    playback_pose(library_, a.state, pose_);
-    if (a.frame_alpha > 0.0f) {
-      PlaybackState next = a.state;
-      next.frame += 1;
-      playback_pose(library_, next, next_pose_);
-      renderer_.add_avatar(library_, pose_, next_pose_, a.frame_alpha, colour);
-    } else {
-      renderer_.add_avatar(library_, pose_, colour);
-    }
+    renderer_.add_avatar(library_, a.state, a.frame_alpha, colour);
     if (colour == kOwnColour) {
       const Placement root = playback_root(library_, a.state);
       own_pos = root.pos_m;

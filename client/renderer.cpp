@@ -229,6 +229,19 @@ void Renderer::add_bones(const MotionLibrary& library, vec3 colour) {
                       glm::vec4(colour, 1.0f)});
 }
 
+void Renderer::add_avatar(const MotionLibrary& library, const PlaybackState& state, float frame_alpha,
+                          vec3 colour) {
+  playback_pose(library, state, pose_);
+  if (frame_alpha <= 0.0f) {
+    add_avatar(library, pose_, colour);
+    return;
+  }
+  PlaybackState next = state;
+  next.frame += 1;
+  playback_pose(library, next, next_pose_);
+  add_avatar(library, pose_, next_pose_, frame_alpha, colour);
+}
+
 void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour) {
   const auto n = static_cast<size_t>(library.num_joints());
   global_pos_.resize(n);  // no-op once sized

@@ -4,6 +4,7 @@
 // bones each cost two draw calls. The floor carries a grid drawn in the fragment shader.
 // Needs a current GL context for every call but the constructor.
 #include "library/motion_library.hpp"
+#include "library/playback.hpp"
 #include "world/scene.hpp"
 
 #include <glm/mat4x4.hpp>
@@ -28,11 +29,9 @@ class Renderer {
 
   /// Starts a frame's dynamic instances (avatars).
   void begin_frame();
-  /// Adds one avatar: FK of `pose` (pelvis in world space), a box per bone.
-  void add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour);
-  /// Like add_avatar, with joint positions lerped `alpha` of the way to `next` (fractional frames).
-  void add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next, float alpha,
-                  vec3 colour);
+  /// Adds one avatar as the interpolation buffer shows it: the pose of `state` (a box per bone,
+  /// FK), its joints lerped `frame_alpha` of the way to the next frame's (fractional frames).
+  void add_avatar(const MotionLibrary& library, const PlaybackState& state, float frame_alpha, vec3 colour);
   /// Adds an overlay line from `a` to `b`: a thin unlit box (the exact `colour` from every side,
   /// so overlays read on any background).
   void add_line(vec3 a, vec3 b, float thickness_m, vec3 colour);
@@ -47,6 +46,9 @@ class Renderer {
     glm::vec4 colour;  ///< a = 1: plain; a = 2: floor grid; a = 3: unlit (overlay lines).
   };
   void add_bones(const MotionLibrary& library, vec3 colour);
+  void add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour);
+  void add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next, float alpha,
+                  vec3 colour);
   void upload_and_draw(unsigned vao, unsigned vbo, size_t& capacity, const std::vector<Instance>& v);
 
   unsigned program_ = 0;
@@ -59,6 +61,7 @@ class Renderer {
   // FK scratch, sized once per library (no allocation per frame).
   std::vector<vec3> global_pos_, global_pos_next_;
   std::vector<quat> global_rot_;
+  Pose pose_, next_pose_;  ///< Sampled poses (sized by playback_pose once).
 };
 
 /// Model matrix of a unit cube (centred, side 1) stretched into the axis-aligned box [min, max].

@@ -28,7 +28,6 @@ class TickStats {
   float tick_ms_max() const;
   /// Means over the window.
   TickRecord mean() const;
-  const TickRecord& last() const { return ring_[(next_ + kWindow - 1) % kWindow]; }
   uint64_t ticks() const { return ticks_; }
   uint64_t overruns() const { return overruns_; }
 

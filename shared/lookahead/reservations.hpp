@@ -30,7 +30,6 @@ class Reservations {
   /// True when some frame of `segment` placed at `start` overlaps a disc reserved by anyone but
   /// `self`.
   bool blocks(int self, const MotionLibrary& library, int segment, const Placement& start) const;
-  size_t num_discs() const { return discs_.size(); }
 
  private:
   struct Disc {
