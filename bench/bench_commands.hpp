@@ -48,6 +48,14 @@ struct ClientBenchOptions {
 /// Only built when foresight_client is (FORESIGHT_HAVE_CLIENT).
 int bench_client(const ClientBenchOptions& options);
 
+struct FighterBenchOptions {
+  int queries = 20000;         ///< Timed retrievals per database.
+  unsigned long long seed = 1;
+  std::string figure_dir;      ///< Non-empty: also write the adapted-strikes SVGs there.
+  bool json = false;
+};
+int bench_fighter(const FighterBenchOptions& options);
+
 struct LoadReportOptions {
   std::vector<std::string> inputs;  ///< Files whose last JSON line is foresight-bots --json output.
   std::string out_dir = "out/loadtest";

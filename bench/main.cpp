@@ -4,6 +4,7 @@
 //   foresight-bench graph --motions DIR [--json]
 //   foresight-bench lookahead [--scene maze] [--strategy command] [--json]
 //   foresight-bench client [--avatars 1000] [--seconds 3] [--json]   (when foresight_client is built)
+//   foresight-bench fighter [--figure DIR] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
 
@@ -66,6 +67,13 @@ int main(int argc, char** argv) {
   cl->add_flag("--json", client.json, "Print one JSON object as the last line");
 #endif
 
+  FighterBenchOptions fighter;
+  auto* fi = app.add_subcommand("fighter", "NPC fighter: strike retrieval (75 / 10,000 entries) and adaptation");
+  fi->add_option("--queries", fighter.queries, "Timed retrievals per database")->check(CLI::Range(100, 10000000));
+  fi->add_option("--seed", fighter.seed, "Seed of queries and targets");
+  fi->add_option("--figure", fighter.figure_dir, "Also write the adapted strikes on five morphologies (SVG) here");
+  fi->add_flag("--json", fighter.json, "Print one JSON object as the last line");
+
   LoadReportOptions load;
   auto* lr = app.add_subcommand("load-report", "Table, CSV and chart from foresight-bots --json outputs (scripts/loadtest)");
   lr->add_option("inputs", load.inputs, "Files ending in a foresight-bots --json line")->required();
@@ -77,6 +85,7 @@ int main(int argc, char** argv) {
   if (*cl) return bench_client(client);
 #endif
   if (*l) return bench_lookahead(lookahead);
+  if (*fi) return bench_fighter(fighter);
   if (*c) return bench_collision(collision);
   if (*b) return bench_bvh(bvh);
   return bench_graph(graph);

@@ -33,10 +33,11 @@ void BotBrain::reset(BotScript script, uint64_t seed, double frame_interval_s) {
   camera_yaw_rad_ = 0;
   replay_loop_ = -1;
   replay_reached_ = false;
+  dodge_left_ = (rng_() & 1u) != 0;
 }
 
 ControlInput BotBrain::frame(const BotWorld& world, const BotFleetConfig& config, double t_s,
-                             const Placement* own, int& plans_left) {
+                             const Placement* own, const Threat* threat, int& plans_left) {
   if (own != nullptr) {
     const float moved = has_last_pos_ ? distance(own->pos_m, last_pos_) : 0.0f;
     if (moved > kTeleport_m) {
@@ -52,6 +53,23 @@ ControlInput BotBrain::frame(const BotWorld& world, const BotFleetConfig& config
     return replay(world, t_s, own ? own->pos_m : vec2(std::numeric_limits<float>::quiet_NaN()));
   }
   if (own == nullptr) return waiting();
+  if (script_ == BotScript::kDodge && threat != nullptr) {
+    const vec2 away = own->pos_m - threat->pos_m;
+    const float d = glm::length(away);
+    const float radius = config.dodge_radius_m * (threat->striking ? 2.0f : 1.0f);
+    if (d < radius && d > 1e-3f) {
+      ++dodge_frames_;
+      has_target_ = false;  // a fresh wander target once safe
+      // Away and to the side (the side kept per bot), as the camera behind at yaw 0 reads it.
+      const vec2 out = away / d;
+      const vec2 side(-out.y, out.x);
+      const vec2 run = glm::normalize(out + (dodge_left_ ? 0.7f : -0.7f) * side);
+      ControlInput in;
+      in.camera_dir = vec2(-run.x, run.y);  // control_world_direction at yaw 0: right is -X
+      camera_yaw_rad_ = 0.0f;
+      return in;
+    }
+  }
   return steer(world, config, t_s, *own, plans_left);
 }
 
@@ -91,7 +109,8 @@ ControlInput BotBrain::steer(const BotWorld& world, const BotFleetConfig& config
 
 bool BotBrain::pick_target(const BotWorld& world, vec2 pos) {
   const auto& goals = world.scene.goals;
-  if (script_ == BotScript::kWander || goals.empty()) return pick_free_point(world, pos);
+  if (script_ == BotScript::kWander || script_ == BotScript::kDodge || goals.empty())
+    return pick_free_point(world, pos);
   // Any goal but the one we stand in (counted without a vector: no allocation).
   int candidates = 0;
   for (const GoalPoint& g : goals) candidates += distance(pos, g.pos_m) > g.radius_m ? 1 : 0;
@@ -124,7 +143,7 @@ bool BotBrain::pick_free_point(const BotWorld& world, vec2 pos) {
     target_ = p;
     target_radius_m_ = kFreePointRadius_m;
     target_goal_ = -1;
-    target_counts_ = script_ == BotScript::kWander;
+    target_counts_ = script_ == BotScript::kWander || script_ == BotScript::kDodge;
     return true;
   }
   return false;

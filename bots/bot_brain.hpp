@@ -5,6 +5,9 @@
 //           random; within the goal's radius it counts and picks another goal (with a single
 //           goal: a free point elsewhere first, uncounted, then the goal again).
 //   wander  the same player, to random free points 3-10 m away.
+//   dodge   wanders like `wander`, but an NPC fighter within dodge_radius (or striking within
+//           twice that) makes it run: away from the fighter and to one side, so it leaves the
+//           line of the strike; the look-ahead keeps the run clear of walls.
 //   replay  the scene's evaluation recording, sample-and-hold from the Accept on, open loop (the
 //           server's spawn is not the recording's, so it rarely ends at the recording's goal;
 //           counted when it does). It repeats, one second after it ends.
@@ -21,19 +24,28 @@
 
 namespace foresight::bots {
 
+/// The nearest NPC fighter as the snapshots show it.
+struct Threat {
+  vec2 pos_m{0.0f};
+  bool striking = false;
+};
+
 class BotBrain {
  public:
   /// A fresh script (call on every Accept). `seed` is this bot's own.
   void reset(BotScript script, uint64_t seed, double frame_interval_s);
 
   /// The input to hold at t_s (seconds since Accept), seeing the avatar's root at `own` (nullptr:
-  /// not seen yet). `plans_left` is decremented for each route planned.
+  /// not seen yet) and the nearest fighter at `threat` (nullptr: none). `plans_left` is
+  /// decremented for each route planned.
   ControlInput frame(const BotWorld& world, const BotFleetConfig& config, double t_s,
-                     const Placement* own, int& plans_left);
+                     const Placement* own, const Threat* threat, int& plans_left);
 
   uint64_t targets_reached() const { return targets_reached_; }
   uint64_t plan_failures() const { return plan_failures_; }
   uint64_t targets_given_up() const { return targets_given_up_; }
+  /// Frames spent running from a fighter (dodge).
+  uint64_t dodge_frames() const { return dodge_frames_; }
   /// Path length of the avatar's root as seen frame to frame (jumps over 3 m excluded).
   double walked_m() const { return walked_m_; }
 
@@ -62,7 +74,8 @@ class BotBrain {
   float camera_yaw_rad_ = 0;  ///< Kept while waiting, so a stop is a stop and nothing else.
   int64_t replay_loop_ = -1;
   bool replay_reached_ = false;
-  uint64_t targets_reached_ = 0, plan_failures_ = 0, targets_given_up_ = 0;
+  bool dodge_left_ = false;  ///< Which side a dodge runs to.
+  uint64_t targets_reached_ = 0, plan_failures_ = 0, targets_given_up_ = 0, dodge_frames_ = 0;
   double walked_m_ = 0;
 };
 

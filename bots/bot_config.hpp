@@ -13,6 +13,7 @@ enum class BotScript : uint8_t {
   kReplay,  ///< Open loop: data/recordings/<scene>_eval.json's commands from the moment of Accept.
   kGoals,   ///< Closed loop: a scripted person steers to the scene's goal points, one after another.
   kWander,  ///< Closed loop: random free points a few metres away.
+  kDodge,   ///< Wanders, and runs from an NPC fighter that comes close or strikes.
 };
 const char* bot_script_name(BotScript script);
 /// "replay", "goals", "wander"; false for anything else.
@@ -28,6 +29,7 @@ struct BotFleetConfig {
   std::string name_prefix = "bot-";   ///< Client names: prefix + index.
   int connects_per_frame = 20;        ///< Staggers the handshakes of a large fleet.
   int plans_per_frame = 16;           ///< Route plans (A*) per frame over all bots.
+  float dodge_radius_m = 2.0f;        ///< dodge: run from a fighter this close (twice as far when it strikes).
   double give_up_target_s = 60;       ///< A target not reached in this time is replaced.
   double stats_wait_s = 1.0;          ///< How long the end waits for the ServerStats answer.
   /// Two avatars whose roots are closer than this count as a contact.

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <thread>
 
 namespace foresight::bots {
@@ -39,6 +40,23 @@ std::string config_problem(const BotFleetConfig& c) {
   if (c.connects_per_frame < 1 || c.plans_per_frame < 1) return "connects and plans per frame must be >= 1";
   if (!(c.give_up_target_s > 0) || !(c.stats_wait_s >= 0)) return "give-up and stats wait times must be > 0";
   return {};
+}
+
+// The NPC fighter nearest `own` in the connection's latest snapshot.
+bool nearest_fighter(const MotionLibrary& library, const protocol::ClientConnection& conn, vec2 own, Threat& out) {
+  float best = std::numeric_limits<float>::max();
+  PlaybackState state;
+  for (const wire::AvatarState& a : conn.avatars()) {
+    if (!(a.flags() & protocol::kAvatarNpc) || !protocol::avatar_playback(library, a, state)) continue;
+    const vec2 pos = playback_root(library, state).pos_m;
+    const float d = glm::length(pos - own);
+    if (d < best) {
+      best = d;
+      out.pos_m = pos;
+      out.striking = (a.flags() & protocol::kAvatarStriking) != 0;
+    }
+  }
+  return best < std::numeric_limits<float>::max();
 }
 
 const BotWorld& unloaded_world() {
@@ -114,8 +132,11 @@ void BotFleet::frame(TimePoint now) {
       }
       const bool same_scene = world_.loaded && bot.conn.accept().scene == world_.scene_name;
       const double t_s = seconds_between(bot.conn.accepted_at(), now);
+      Threat threat;
+      const bool threatened = own != nullptr && config_.script == BotScript::kDodge &&
+                              nearest_fighter(library_, bot.conn, own->pos_m, threat);
       bot.conn.set_input(bot.brain.frame(same_scene ? world_ : unloaded_world(), config_, t_s, own,
-                                         plans_left));
+                                         threatened ? &threat : nullptr, plans_left));
     }
     // Send.
     bot.conn.flush(now);

@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
   app.add_option("--count", config.count, "Bots (each its own UDP socket and session)")
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
-  app.add_option("--script", script, "replay | goals | wander")
-      ->check(CLI::IsMember({"replay", "goals", "wander"}))
+  app.add_option("--script", script, "replay | goals | wander | dodge")
+      ->check(CLI::IsMember({"replay", "goals", "wander", "dodge"}))
       ->capture_default_str();
   app.add_option("--seconds", config.seconds, "Run time")->check(CLI::Range(0.0, 1e6))->capture_default_str();
   app.add_option("--seed", config.seed, "Seed of goal choices and human behaviour")->capture_default_str();

@@ -4,11 +4,15 @@
 #include "camera_rig.hpp"
 #include "client_input.hpp"
 #include "debug_overlay.hpp"
+#include "fighter_poses.hpp"
 #include "renderer.hpp"
 #include "screenshot.hpp"
 #include "script_input.hpp"
 #include "snapshot_buffer.hpp"
+#include "strike_feedback.hpp"
+#include "tree_overlay.hpp"
 
+#include "fighter/morphology.hpp"
 #include "library/playback.hpp"
 #include "protocol/client_connection.hpp"
 #include "protocol/protocol.hpp"
@@ -18,7 +22,9 @@
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <thread>
@@ -31,20 +37,21 @@ using Clock = std::chrono::steady_clock;
 
 constexpr vec3 kOwnColour{1.0f, 0.55f, 0.10f};    // orange: the player
 constexpr vec3 kOtherColour{0.25f, 0.45f, 0.85f}; // blue: everyone else
-constexpr vec3 kNpcColour{0.60f, 0.30f, 0.70f};
+constexpr vec3 kNpcColour{0.60f, 0.30f, 0.70f};      // NPCs without a streamed pose
+constexpr vec3 kFighterColour{0.72f, 0.06f, 0.10f};  // crimson: NPC fighters
+constexpr vec3 kStrikingColour{1.00f, 0.16f, 0.12f}; // bright red: a fighter mid-strike
+constexpr vec3 kFlashColour{1.0f, 1.0f, 1.0f};       // a hit target flashes white
+// Effector markers (unlit): magenta where a strike hit, yellow where it missed; 0.2 m cubes
+// shrinking to half over their second.
+constexpr vec3 kHitMarkerColour{1.0f, 0.15f, 0.85f};
+constexpr vec3 kMissMarkerColour{1.0f, 0.92f, 0.20f};
+constexpr float kMarkerSizeM = 0.20f;
 constexpr vec3 kStoppedColour{0.70f, 0.30f, 0.30f};  // idle fallback: nothing feasible ahead
 /// Least time between two Inputs: the server ticks at 30 Hz, the window may draw far faster.
 constexpr std::chrono::milliseconds kInputInterval{30};
 constexpr double kMinFrameS = 1.0 / 240.0;  ///< Frame cap when vsync does not throttle.
-/// Tree overlay (paper Fig. 5): how often the tree is asked for, and how it is drawn.
+/// Tree overlay (paper Fig. 5, tree_overlay.hpp): how often the tree is asked for.
 constexpr double kTreeRequestIntervalS = 0.2;
-constexpr vec3 kTreeColour{0.10f, 0.85f, 0.85f};    // cyan: the sampled tree
-constexpr vec3 kChosenColour{1.00f, 0.95f, 0.10f};  // yellow: the branch the tree would take now
-constexpr float kTreeLineM = 0.06f, kChosenLineM = 0.12f;
-/// A square outline (side) around each chosen node's end: idle clips end where they start, and
-/// the choice still shows around a standing avatar's feet.
-constexpr float kChosenMarkM = 0.60f;
-constexpr float kTreeLiftM = 0.06f;  ///< Above the floor, so the floor never hides the lines.
 
 void on_glfw_error(int code, const char* message) {
   std::fprintf(stderr, "foresight-client: GLFW error %d: %s\n", code, message);
@@ -70,6 +77,28 @@ HeldKeys held_keys(GLFWwindow* w) {
   return k;
 }
 
+// Mouse-drag steering: the drag starts where the left button went down (unless the press went to
+// the debug overlay) and lasts while the button is held and the window has focus (a release in
+// another window never reaches us).
+void update_drag(GLFWwindow* w, bool overlay_wants_mouse, MouseDrag& drag) {
+  if (!glfwGetWindowAttrib(w, GLFW_FOCUSED) || glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) != GLFW_PRESS) {
+    drag.active = false;
+    return;
+  }
+  double x = 0, y = 0;
+  glfwGetCursorPos(w, &x, &y);
+  const vec2 at(static_cast<float>(x), static_cast<float>(y));
+  if (!drag.active) {
+    if (overlay_wants_mouse) return;
+    drag.active = true;
+    drag.from_px = at;
+  }
+  drag.to_px = at;
+}
+
+uint32_t id_of(const FighterPoseSample& f) { return f.avatar; }
+uint32_t id_of(uint32_t id) { return id; }
+
 vec3 colour_of(const ShownAvatar& a, uint32_t own_id) {
   if (a.id == own_id || (a.flags & protocol::kAvatarYours)) return kOwnColour;
   if (a.flags & protocol::kAvatarNpc) return kNpcColour;
@@ -82,11 +111,15 @@ class Session {
  public:
   Session(GLFWwindow* window, const MotionLibrary& library, const ClientOptions& options)
       : window_(window), library_(library), options_(options), connection_(connection_config()),
-        buffer_(buffer_config(options)) {
+        buffer_(buffer_config(options)), morphologies_(default_morphologies()),
+        strikes_(strike_config(options)) {
     tree_overlay_ = options.tree_overlay;
     if (options.follow_camera) rig_.toggle_follow();
     shown_.reserve(256);
+    shown_fighters_.reserve(static_cast<size_t>(fighters_.config().max_fighters));
+    strike_events_.reserve(64);
     entries_.reserve(256);
+    ghosts_.reserve(protocol::kMaxTreeSamples * kGhostFramesPerNode);
     glfwSetWindowUserPointer(window_, &rig_);
     glfwSetKeyCallback(window_, on_key);
   }
@@ -103,6 +136,11 @@ class Session {
     c.min_input_interval = kInputInterval;
     return c;
   }
+  static StrikeFeedbackConfig strike_config(const ClientOptions& o) {
+    StrikeFeedbackConfig c;
+    c.show_delay_s = o.delay_s;
+    return c;
+  }
   static SnapshotBufferConfig buffer_config(const ClientOptions& o) {
     SnapshotBufferConfig c;
     c.delay_s = o.delay_s;
@@ -111,6 +149,8 @@ class Session {
   void connection_step(Clock::time_point now, double t);
   void on_connected();
   void draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
+  void draw_fighters(double t);
+  const ShownAvatar* shown_avatar(uint32_t id) const;
   void tree_overlay_step(double t);
 
   GLFWwindow* window_;
@@ -118,6 +158,9 @@ class Session {
   const ClientOptions& options_;
   protocol::ClientConnection connection_;
   SnapshotBuffer buffer_;
+  std::vector<Morphology> morphologies_;  ///< default_morphologies(): the fighters' skeletons.
+  FighterPoses fighters_;                 ///< Their streamed poses, played with the avatars.
+  StrikeFeedback strikes_;                ///< Strike markers, hit flashes, counters.
   CameraRig rig_;
   Renderer renderer_;
   DebugOverlay overlay_;  ///< F1; drawn over the scene (also in screenshots).
@@ -136,9 +179,16 @@ class Session {
   double next_tree_request_s_ = 0;
   double connected_at_s_ = 0;  ///< When the connection was last made (the script's time 0).
   bool script_end_reported_ = false;
+  bool resized_ = false;  ///< --resize-at-s done.
+  MouseDrag drag_;
 
   std::vector<AvatarEntry> entries_;
   std::vector<ShownAvatar> shown_;
+  std::vector<PlaybackState> ghosts_;  ///< Tree overlay scratch: the chosen branch's ghost poses.
+  std::vector<FighterPoseSample> shown_fighters_;
+  std::vector<protocol::StrikeEventInfo> strike_events_;
+  std::vector<vec3> fighter_local_pos_, fighter_global_pos_;  ///< FK scratch.
+  std::vector<quat> fighter_global_rot_;
 };
 
 void Session::on_connected() {
@@ -171,6 +221,8 @@ void Session::connection_step(Clock::time_point now, double t) {
     started_ = true;
     reported_down_ = false;
     buffer_.clear();
+    fighters_.clear();
+    strikes_.clear_effects();
     last_parts_ = -1;
     if (!connection_.start(options_.server, library_.content_hash, options_.name, now)) {
       std::fprintf(stderr, "foresight-client: %s\n", connection_.status_message().c_str());
@@ -198,17 +250,37 @@ void Session::connection_step(Clock::time_point now, double t) {
     last_tick_ = connection_.snapshot_tick();
     last_parts_ = connection_.snapshot_parts_received();
     rejected_ += static_cast<uint64_t>(avatar_entries_from_wire(library_, connection_.avatars(), entries_));
-    buffer_.push(static_cast<double>(last_tick_) / connection_.accept().tick_hz, t, entries_);
+    const double server_time_s = static_cast<double>(last_tick_) / connection_.accept().tick_hz;
+    buffer_.push(server_time_s, t, entries_);
+    fighters_.push(server_time_s, connection_.fighters());
+  }
+  strike_events_.clear();
+  connection_.take_strike_events(strike_events_);
+  if (!strike_events_.empty()) strikes_.add(strike_events_, connection_.accept().avatar, t);
+  for (const protocol::StrikeEventInfo& e : strike_events_) {
+    if (e.target != connection_.accept().avatar) continue;
+    std::fprintf(stderr, "foresight-client: %.2f s: %s by fighter %u's %s (%.2f m from the head)\n",
+                 t - connected_at_s_, e.hit ? "hit" : "dodged", e.fighter, e.kick ? "kick" : "punch",
+                 static_cast<double>(e.miss_m));
   }
 }
 
 void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen) {
   renderer_.begin_frame();
-  buffer_.sample(library_, buffer_.render_time(t), shown_);
+  const double render_t = buffer_.render_time(t);
+  buffer_.sample(library_, render_t, shown_);
+  fighters_.sample(render_t, shown_fighters_);
   const uint32_t own_id = connection_.accept().avatar;
   for (const ShownAvatar& a : shown_) {
     const vec3 colour = colour_of(a, own_id);
-    renderer_.add_avatar(library_, a.state, a.frame_alpha, colour);
+    // A fighter with a streamed pose is drawn from it (draw_fighters), not from the library.
+    const bool fighter = (a.flags & protocol::kAvatarNpc) &&
+                         std::binary_search(shown_fighters_.begin(), shown_fighters_.end(), a.id,
+                                            [](const auto& x, const auto& y) { return id_of(x) < id_of(y); });
+    if (!fighter) {
+      const float flash = strikes_.target_flash(a.id, t);
+      renderer_.add_avatar(library_, a.state, a.frame_alpha, glm::mix(colour, kFlashColour, flash));
+    }
     if (colour == kOwnColour) {
       const Placement root = playback_root(library_, a.state);
       own_pos = root.pos_m;
@@ -218,10 +290,32 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
   }
 }
 
+const ShownAvatar* Session::shown_avatar(uint32_t id) const {
+  const auto it = std::lower_bound(shown_.begin(), shown_.end(), id,
+                                   [](const ShownAvatar& a, uint32_t v) { return a.id < v; });
+  return it != shown_.end() && it->id == id ? &*it : nullptr;
+}
+
+// The fighters from their streamed poses on their own morphologies' skeletons (crimson, brighter
+// while striking, white while flashing from a hit they took), then the strike markers.
+void Session::draw_fighters(double t) {
+  for (const FighterPoseSample& f : shown_fighters_) {
+    if (!fighter_joint_positions(morphologies_, f, fighter_local_pos_, fighter_global_pos_, fighter_global_rot_))
+      continue;
+    const ShownAvatar* a = shown_avatar(f.avatar);
+    const bool striking = a != nullptr && (a->flags & protocol::kAvatarStriking);
+    const vec3 colour = glm::mix(striking ? kStrikingColour : kFighterColour, kFlashColour,
+                                 strikes_.target_flash(f.avatar, t));
+    const Morphology& m = morphologies_[f.morphology];
+    renderer_.add_skeleton(m.skeleton.parents, fighter_global_pos_, colour, std::sqrt(m.height_m / 1.75f));
+  }
+  strikes_.for_each_marker(t, [this](const StrikeMarker& m, float age) {
+    renderer_.add_marker(m.pos_m, kMarkerSizeM * (1.0f - 0.5f * age), m.hit ? kHitMarkerColour : kMissMarkerColour);
+  });
+}
+
 // Key T (edge-triggered, polled) toggles the overlay; while on, the tree is asked for every
-// kTreeRequestIntervalS and the newest summary drawn: a line from each sampled node's parent end
-// to its own end (the root's from where it started), the chosen branch thicker and in yellow with
-// a square outline around each of its nodes' ends.
+// kTreeRequestIntervalS and the newest summary drawn (tree_overlay.hpp).
 void Session::tree_overlay_step(double t) {
   const bool down = glfwGetWindowAttrib(window_, GLFW_FOCUSED) && glfwGetKey(window_, GLFW_KEY_T) == GLFW_PRESS;
   if (down && !tree_key_down_) tree_overlay_ = !tree_overlay_;
@@ -233,23 +327,7 @@ void Session::tree_overlay_step(double t) {
   }
   const protocol::TreeView& tree = connection_.tree();
   if (connection_.tree_count() == 0 || tree.avatar != connection_.accept().avatar) return;
-  const float y = scene_.terrain.floor_y_m + kTreeLiftM;
-  const auto at = [y](vec2 ground) { return vec3(ground.x, y, ground.y); };
-  // Ordinary nodes first, the chosen branch after: where they overlap the highlight wins.
-  for (int pass = 0; pass < 2; ++pass) {
-    for (size_t i = 0; i < tree.size(); ++i) {
-      if ((tree.chosen[i] != 0) != (pass == 1)) continue;
-      const vec2 from = tree.parent[i] == protocol::kTreeNoParent ? tree.origin_m : tree.end_m[tree.parent[i]];
-      renderer_.add_line(at(from), at(tree.end_m[i]), pass == 1 ? kChosenLineM : kTreeLineM,
-                         pass == 1 ? kChosenColour : kTreeColour);
-      if (pass == 1) {  // a square outline around the end
-        const vec3 c = at(tree.end_m[i]);
-        const float h = 0.5f * kChosenMarkM;
-        const vec3 corners[4] = {c + vec3(-h, 0, -h), c + vec3(h, 0, -h), c + vec3(h, 0, h), c + vec3(-h, 0, h)};
-        for (int k = 0; k < 4; ++k) renderer_.add_line(corners[k], corners[(k + 1) % 4], kTreeLineM, kChosenColour);
-      }
-    }
-  }
+  add_tree_overlay(renderer_, library_, tree, scene_.terrain.floor_y_m, ghosts_);
 }
 
 bool Session::frame(int& status) {
@@ -269,6 +347,7 @@ bool Session::frame(int& status) {
   float own_heading = scene_.spawns.empty() ? 0.0f : scene_.spawns[0].heading_rad;
   bool own_seen = false;
   draw_avatars(t, own_pos, own_heading, own_seen);
+  draw_fighters(t);
   tree_overlay_step(t);
   rig_.update(own_pos, own_heading, dt);
   if (connection_.connected()) {
@@ -280,17 +359,33 @@ bool Session::frame(int& status) {
         script_end_reported_ = true;
       }
     } else {
-      // Keys go to ImGui instead only while one of its widgets is active.
-      connection_.set_input(control_from_keys(overlay_.wants_keyboard() ? HeldKeys{} : held_keys(window_), rig_.yaw_rad()));
+      // Keys go to ImGui instead only while one of its widgets is active; a left-button drag
+      // steers while held, through the same mapping (client_input.hpp).
+      update_drag(window_, overlay_.wants_mouse(), drag_);
+      const HeldKeys keys = overlay_.wants_keyboard() ? HeldKeys{} : held_keys(window_);
+      connection_.set_input(control_from_input(keys, drag_, rig_.yaw_rad()));
     }
   }
 
+  // --resize-at-s: resize the window as a person dragging its border would (tests: the next
+  // frames and the screenshot follow the new size).
+  if (options_.resize_at_s > 0 && !resized_ && connection_.connected() && t - connected_at_s_ >= options_.resize_at_s) {
+    glfwSetWindowSize(window_, options_.resize_width, options_.resize_height);
+    std::fprintf(stderr, "foresight-client: resized the window to %dx%d\n", options_.resize_width,
+                 options_.resize_height);
+    resized_ = true;
+  }
   int width = 0, height = 0;
   glfwGetFramebufferSize(window_, &width, &height);  // follows resizes
   if (width > 0 && height > 0) {                     // 0: minimised, nothing to draw
     renderer_.draw(width, height, rig_.view(),
                    rig_.projection(static_cast<float>(width) / static_cast<float>(height)));
-    overlay_.frame(connection_, t, tree_overlay_);
+    FightFigures fight;
+    fight.fighters = static_cast<int>(shown_fighters_.size());
+    fight.hits_taken = strikes_.hits_taken();
+    fight.dodged = strikes_.dodged();
+    fight.hit_flash = strikes_.own_hit_flash(t);
+    overlay_.frame(connection_, t, tree_overlay_, fight);
   }
 
   if (!options_.screenshot_path.empty()) {
@@ -309,8 +404,8 @@ bool Session::frame(int& status) {
         std::fprintf(stderr, "foresight-client: %s\n", error.c_str());
         status = 1;
       } else {
-        std::fprintf(stderr, "foresight-client: wrote %s (%dx%d, %zu avatars)\n",
-                     options_.screenshot_path.c_str(), width, height, shown_.size());
+        std::fprintf(stderr, "foresight-client: wrote %s (%dx%d, %zu avatars, %zu fighters)\n",
+                     options_.screenshot_path.c_str(), width, height, shown_.size(), shown_fighters_.size());
         status = 0;
       }
       connection_.disconnect();

@@ -31,6 +31,10 @@ struct ClientOptions {
   std::optional<Recording> script;
   /// Screenshot mode: > 0 takes the shot this many seconds after connecting (instead of `frames`).
   double screenshot_at_s = 0;
+  /// --resize-at-s S --resize-to WxH: > 0 resizes the window to resize_width x resize_height this
+  /// many seconds after connecting (tests resizing under Xvfb, where nobody drags a border).
+  double resize_at_s = 0;
+  int resize_width = 0, resize_height = 0;
 };
 
 /// Runs until the window closes, Escape, `stop` or (screenshot mode) the PNG is written.

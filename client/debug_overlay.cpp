@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace foresight::client {
 
@@ -92,7 +93,25 @@ void draw_dot(ImDrawList* list, ImVec2 centre, LinkQuality q) {
 
 unsigned long long ull(uint64_t v) { return static_cast<unsigned long long>(v); }
 
+// The hit flash: red bands fading inwards from the four edges of the screen, under ImGui's
+// windows and over the scene.
+void draw_hit_flash(ImDrawList* list, ImVec2 size, float strength) {
+  if (strength <= 0.0f) return;
+  const float band = 0.12f * std::min(size.x, size.y);
+  const ImU32 red = IM_COL32(230, 20, 20, static_cast<int>(std::min(strength, 1.0f) * 200.0f));
+  const ImU32 clear = IM_COL32(230, 20, 20, 0);
+  list->AddRectFilledMultiColor(ImVec2(0, 0), ImVec2(size.x, band), red, red, clear, clear);            // top
+  list->AddRectFilledMultiColor(ImVec2(0, size.y - band), size, clear, clear, red, red);                // bottom
+  list->AddRectFilledMultiColor(ImVec2(0, 0), ImVec2(band, size.y), red, clear, clear, red);            // left
+  list->AddRectFilledMultiColor(ImVec2(size.x - band, 0), size, clear, red, red, clear);                // right
+}
+
 }  // namespace
+
+void format_fight_line(const FightFigures& fight, char* out, size_t n) {
+  std::snprintf(out, n, "fighters %d, hits taken %llu, dodged %llu", fight.fighters, ull(fight.hits_taken),
+                ull(fight.dodged));
+}
 
 DebugOverlay::~DebugOverlay() { shutdown(); }
 
@@ -128,8 +147,10 @@ void DebugOverlay::shutdown() {
 }
 
 bool DebugOverlay::wants_keyboard() const { return window_ && ImGui::GetIO().WantCaptureKeyboard; }
+bool DebugOverlay::wants_mouse() const { return window_ && ImGui::GetIO().WantCaptureMouse; }
 
-void DebugOverlay::frame(protocol::ClientConnection& connection, double t_s, bool& tree_overlay) {
+void DebugOverlay::frame(protocol::ClientConnection& connection, double t_s, bool& tree_overlay,
+                         const FightFigures& fight) {
   if (!window_) return;
   frame_timer_.tick(t_s);
   const bool f1 = glfwGetWindowAttrib(window_, GLFW_FOCUSED) && glfwGetKey(window_, GLFW_KEY_F1) == GLFW_PRESS;
@@ -157,6 +178,7 @@ void DebugOverlay::frame(protocol::ClientConnection& connection, double t_s, boo
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  draw_hit_flash(ImGui::GetBackgroundDrawList(), ImGui::GetIO().DisplaySize, fight.hit_flash);
   if (!visible_) {
     draw_dot(ImGui::GetForegroundDrawList(), ImVec2(8.0f + kDotRadius, 8.0f + kDotRadius), quality_);
   } else {
@@ -201,6 +223,11 @@ void DebugOverlay::frame(protocol::ClientConnection& connection, double t_s, boo
       } else {
         ImGui::TextUnformatted("(waiting for stats)");
       }
+      ImGui::Separator();
+      ImGui::TextDisabled("fighters");
+      char fight_line[96];
+      format_fight_line(fight, fight_line, sizeof fight_line);
+      ImGui::TextUnformatted(fight_line);
       ImGui::Separator();
       ImGui::TextDisabled("client");
       ImGui::Text("frame      %.1f ms, %.0f fps", frame_timer_.ms(), frame_timer_.fps());

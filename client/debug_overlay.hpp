@@ -6,6 +6,7 @@
 // hidden. The pure parts (quality classification, the loss and bandwidth meter) are separate so
 // tests reach them without a window.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -85,6 +86,17 @@ class FrameTimer {
   double last_s_ = -1, ms_ = 0;
 };
 
+/// NPC fighters' figures for the overlay (strike_feedback.hpp), and the hit flash to draw.
+struct FightFigures {
+  int fighters = 0;          ///< Fighters shown.
+  uint64_t hits_taken = 0;   ///< Strikes at the local player that hit.
+  uint64_t dodged = 0;       ///< Strikes at the local player that missed.
+  float hit_flash = 0.0f;    ///< 0..1: red tint of the screen's edges (the local player was hit).
+};
+
+/// The overlay's fighters line: "fighters N, hits taken H, dodged M" (into `out`, size `n`).
+void format_fight_line(const FightFigures& fight, char* out, size_t n);
+
 /// The ImGui window. Lives while the window's GL context is current.
 class DebugOverlay {
  public:
@@ -101,12 +113,18 @@ class DebugOverlay {
 
   /// Once a frame, after the scene is drawn and before the buffer is read or swapped: polls F1,
   /// updates the figures, asks for ServerStats once a second while visible, draws the window (or
-  /// only the quality dot). The checkbox edits `tree_overlay` (the key T flag).
-  void frame(protocol::ClientConnection& connection, double t_s, bool& tree_overlay);
+  /// only the quality dot). The checkbox edits `tree_overlay` (the key T flag). `fight` adds the
+  /// fighters line and, while fight.hit_flash > 0, a red tint along the screen's edges (drawn
+  /// with the window hidden too).
+  void frame(protocol::ClientConnection& connection, double t_s, bool& tree_overlay,
+             const FightFigures& fight = {});
 
   /// True while ImGui uses the keyboard (a widget of its window active): the game should then
   /// ignore held keys. False whenever its window is not focused.
   bool wants_keyboard() const;
+  /// True while the mouse is over ImGui's window or one of its widgets holds it: a left-button
+  /// press then goes to the overlay, not to drag steering.
+  bool wants_mouse() const;
   bool visible() const { return visible_; }
   void set_visible(bool visible) { visible_ = visible; }
   LinkQuality quality() const { return quality_; }

@@ -1,9 +1,9 @@
 // foresight-client: the interactive client (docs/CLIENT.md).
 //   foresight-client --server 127.0.0.1:7777 [--motions DIR] [--delay-ms 100]
 //                    [--screenshot out.png --frames N | --screenshot-at-s S] [--tree-overlay]
-//                    [--follow-camera] [--script recording.json]
-// Arrows / WASD steer in camera space, C crouches, F toggles the follow camera, T the
-// feasible-motion-tree overlay, Escape quits.
+//                    [--follow-camera] [--script recording.json] [--resize-at-s S --resize-to WxH]
+// Arrows / WASD (or a left-button drag) steer in camera space, C crouches, F toggles the follow
+// camera, T the feasible-motion-tree overlay, Escape quits.
 #include "client_app.hpp"
 
 #include "library/library_source.hpp"
@@ -54,6 +54,11 @@ int main(int argc, char** argv) {
   app.add_option("--timeout", options.screenshot_timeout_s,
                  "Screenshot mode: give up (exit 1) after this many seconds")
       ->capture_default_str();
+  std::string resize_to;
+  app.add_option("--resize-at-s", options.resize_at_s,
+                 "Resize the window (to --resize-to) this many seconds after connecting")
+      ->check(CLI::Range(0.0, 100000.0));
+  app.add_option("--resize-to", resize_to, "New window size for --resize-at-s, WxH (e.g. 960x540)");
   // The same library options as the server: the library's content hash must match its own.
   MotionSource source;
   add_motion_source_options(app, source);
@@ -64,6 +69,17 @@ int main(int argc, char** argv) {
   if (!protocol::parse_endpoint(options.server_text, options.server, error)) {
     std::fprintf(stderr, "foresight-client: --server: %s\n", error.c_str());
     return 1;
+  }
+  if (options.resize_at_s > 0 || !resize_to.empty()) {
+    char x = 0, rest = 0;
+    if (options.resize_at_s <= 0 ||
+        std::sscanf(resize_to.c_str(), "%d%c%d%c", &options.resize_width, &x, &options.resize_height, &rest) != 3 ||
+        (x != 'x' && x != 'X') || options.resize_width < 64 || options.resize_height < 64 ||
+        options.resize_width > 8192 || options.resize_height > 8192) {
+      std::fprintf(stderr, "foresight-client: --resize-at-s S and --resize-to WxH go together "
+                           "(W and H 64..8192), got '%s'\n", resize_to.c_str());
+      return 1;
+    }
   }
   if (!script_path.empty()) {
     Recording script;

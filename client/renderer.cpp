@@ -46,7 +46,10 @@ void main() {
   // A weak fill from the opposite side keeps faces turned away from the sun from going black.
   float fill = max(dot(n, normalize(vec3(-0.45, 0.3, -0.3))), 0.0);
   vec3 c = v_colour.rgb * (0.35 + 0.6 * diffuse + 0.25 * fill);
-  if (v_colour.a > 2.5) {  // overlay lines: unlit, the exact colour from every side
+  if (v_colour.a > 3.5) {  // ghost poses: a checkerboard of pixels left out reads as translucent
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    if (((p.x + p.y) & 1) != 0) discard;
+  } else if (v_colour.a > 2.5) {  // overlay lines: unlit, the exact colour from every side
     c = v_colour.rgb;
   } else if (v_colour.a > 1.5) {  // floor: 1 m grid lines
     vec2 f = abs(fract(v_world.xz) - 0.5);
@@ -217,41 +220,53 @@ void Renderer::set_scene(const Scene& scene) {
 
 void Renderer::begin_frame() { dynamic_.clear(); }
 
-void Renderer::add_bones(const MotionLibrary& library, vec3 colour) {
-  const auto& parents = library.skeleton.parents;
-  for (size_t j = 1; j < parents.size(); ++j) {
-    const vec3 a = global_pos_[static_cast<size_t>(parents[j])], b = global_pos_[j];
+void Renderer::add_bones(std::span<const int16_t> parents, std::span<const vec3> global_pos_m, glm::vec4 colour,
+                         float scale) {
+  if (global_pos_m.empty()) return;
+  for (size_t j = 1; j < parents.size() && j < global_pos_m.size(); ++j) {
+    const vec3 a = global_pos_m[static_cast<size_t>(parents[j])], b = global_pos_m[j];
     if (glm::length(b - a) < 0.01f) continue;
-    dynamic_.push_back({bone_matrix(a, b, 0.09f), glm::vec4(colour, 1.0f)});
+    dynamic_.push_back({bone_matrix(a, b, 0.09f * scale), colour});
   }
   // The head end of the chain gets a block of its own so avatars read as people.
-  dynamic_.push_back({bone_matrix(global_pos_.back(), global_pos_.back() + vec3(0, 0.001f, 0), 0.18f),
-                      glm::vec4(colour, 1.0f)});
+  const vec3 head = global_pos_m.back();
+  dynamic_.push_back({bone_matrix(head, head + vec3(0, 0.001f, 0), 0.18f * scale), colour});
+}
+
+void Renderer::add_skeleton(std::span<const int16_t> parents, std::span<const vec3> global_pos_m, vec3 colour,
+                            float scale) {
+  add_bones(parents, global_pos_m, glm::vec4(colour, 1.0f), scale);
+}
+
+void Renderer::add_marker(vec3 centre, float size_m, vec3 colour) {
+  if (size_m <= 0.0f) return;
+  dynamic_.push_back({box_matrix(centre - vec3(0.5f * size_m), centre + vec3(0.5f * size_m)), glm::vec4(colour, 3.0f)});
 }
 
 void Renderer::add_avatar(const MotionLibrary& library, const PlaybackState& state, float frame_alpha,
-                          vec3 colour) {
+                          vec3 colour, AvatarStyle style) {
+  const glm::vec4 c(colour, style == AvatarStyle::kGhost ? 4.0f : 1.0f);
   playback_pose(library, state, pose_);
   if (frame_alpha <= 0.0f) {
-    add_avatar(library, pose_, colour);
+    add_avatar(library, pose_, c);
     return;
   }
   PlaybackState next = state;
   next.frame += 1;
   playback_pose(library, next, next_pose_);
-  add_avatar(library, pose_, next_pose_, frame_alpha, colour);
+  add_avatar(library, pose_, next_pose_, frame_alpha, c);
 }
 
-void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour) {
+void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, glm::vec4 colour) {
   const auto n = static_cast<size_t>(library.num_joints());
   global_pos_.resize(n);  // no-op once sized
   global_rot_.resize(n);
   fk_pose(library.skeleton, pose.local_pos_m, pose.local_rot, global_pos_, global_rot_);
-  add_bones(library, colour);
+  add_bones(library.skeleton.parents, global_pos_, colour, 1.0f);
 }
 
 void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next,
-                          float alpha, vec3 colour) {
+                          float alpha, glm::vec4 colour) {
   const auto n = static_cast<size_t>(library.num_joints());
   global_pos_.resize(n);
   global_pos_next_.resize(n);
@@ -259,7 +274,7 @@ void Renderer::add_avatar(const MotionLibrary& library, const Pose& pose, const 
   fk_pose(library.skeleton, next.local_pos_m, next.local_rot, global_pos_next_, global_rot_);
   fk_pose(library.skeleton, pose.local_pos_m, pose.local_rot, global_pos_, global_rot_);
   for (size_t j = 0; j < n; ++j) global_pos_[j] += alpha * (global_pos_next_[j] - global_pos_[j]);
-  add_bones(library, colour);
+  add_bones(library.skeleton.parents, global_pos_, colour, 1.0f);
 }
 
 void Renderer::add_line(vec3 a, vec3 b, float thickness_m, vec3 colour) {

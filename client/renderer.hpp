@@ -10,10 +10,16 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 
+#include <span>
 #include <string>
 #include <vector>
 
 namespace foresight::client {
+
+/// How an avatar's bones are drawn: solid, or as a ghost (the tree overlay's poses of clips the
+/// avatar may play next): lit, but every other pixel left out (screen-door translucency, so
+/// nothing needs sorting and the pass stays one draw call).
+enum class AvatarStyle { kSolid, kGhost };
 
 class Renderer {
  public:
@@ -31,7 +37,15 @@ class Renderer {
   void begin_frame();
   /// Adds one avatar as the interpolation buffer shows it: the pose of `state` (a box per bone,
   /// FK), its joints lerped `frame_alpha` of the way to the next frame's (fractional frames).
-  void add_avatar(const MotionLibrary& library, const PlaybackState& state, float frame_alpha, vec3 colour);
+  void add_avatar(const MotionLibrary& library, const PlaybackState& state, float frame_alpha, vec3 colour,
+                  AvatarStyle style = AvatarStyle::kSolid);
+  /// Adds a skeleton already posed in world space (NPC fighters: their own morphology's skeleton):
+  /// a box per bone from parent to child, plus a head block at the last joint, as add_avatar
+  /// draws; `scale` multiplies the bone thickness (smaller characters, thinner bones).
+  void add_skeleton(std::span<const int16_t> parents, std::span<const vec3> global_pos_m, vec3 colour,
+                    float scale = 1.0f);
+  /// Adds an unlit cube of side `size_m` centred on `centre` (strike markers).
+  void add_marker(vec3 centre, float size_m, vec3 colour);
   /// Adds an overlay line from `a` to `b`: a thin unlit box (the exact `colour` from every side,
   /// so overlays read on any background).
   void add_line(vec3 a, vec3 b, float thickness_m, vec3 colour);
@@ -43,12 +57,14 @@ class Renderer {
  private:
   struct Instance {
     glm::mat4 model;
-    glm::vec4 colour;  ///< a = 1: plain; a = 2: floor grid; a = 3: unlit (overlay lines).
+    /// a = 1: plain; a = 2: floor grid; a = 3: unlit (overlay lines); a = 4: ghost (screen door).
+    glm::vec4 colour;
   };
-  void add_bones(const MotionLibrary& library, vec3 colour);
-  void add_avatar(const MotionLibrary& library, const Pose& pose, vec3 colour);
+  void add_bones(std::span<const int16_t> parents, std::span<const vec3> global_pos_m, glm::vec4 colour,
+                 float scale);
+  void add_avatar(const MotionLibrary& library, const Pose& pose, glm::vec4 colour);
   void add_avatar(const MotionLibrary& library, const Pose& pose, const Pose& next, float alpha,
-                  vec3 colour);
+                  glm::vec4 colour);
   void upload_and_draw(unsigned vao, unsigned vbo, size_t& capacity, const std::vector<Instance>& v);
 
   unsigned program_ = 0;

@@ -8,6 +8,9 @@
 
 #include <csignal>
 #include <cstdio>
+#include <iostream>
+#include <string>
+#include <thread>
 
 namespace {
 foresight::server::Server* g_server = nullptr;
@@ -50,9 +53,26 @@ int main(int argc, char** argv) {
   app.add_option("--max-packets-per-s", config.max_packets_per_s, "Per-session packet rate limit")
       ->check(CLI::Range(1, 100000))->capture_default_str();
   double seconds = 0;
+  app.add_option("--fighters", config.fighters,
+                 "NPC fighters (-1: one per NPC spawn of the scene; N: that many)")
+      ->check(CLI::Range(-1, 256))
+      ->capture_default_str();
+  bool supervised = false;
+  app.add_flag("--fighters-supervised", supervised, "Fighters strike only when ordered (no own policy)");
+  app.add_option("--fighter-cooldown-s", config.fighter_cooldown_s, "Fighters' own policy: seconds between strikes")
+      ->check(CLI::Range(0.0, 600.0))
+      ->capture_default_str();
+  app.add_option("--fighter-strikes", config.fighter_strikes, "Extra BVH folder of strikes for the fighters");
+  app.add_option("--fighter-strikes-sidecar", config.fighter_strikes_sidecar,
+                 "Annotations of that folder (default: its strikes.json, else automatic splitting)");
+  app.add_option("--fighter-cache", config.fighter_cache_dir, "Folder caching the fighters' pose clusters");
+  bool console = false;
+  app.add_flag("--console", console,
+               "Read supervisor commands from stdin (fighters, order <id|all> punch|kick|any, auto on|off, help)");
   app.add_option("--seconds", seconds, "Stop after this long (0: run until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
   add_motion_source_options(app, config.motions);
   CLI11_PARSE(app, argc, argv);
+  config.fighters_auto_attack = !supervised;
 
   std::string error;
   if (!strategy_parse(strategy, config.strategy, error)) {
@@ -74,6 +94,14 @@ int main(int argc, char** argv) {
       server.stop();
     });
     timer.detach();
+  }
+  if (console) {
+    // Detached: a blocking read of stdin cannot be interrupted portably. It holds the queue, not
+    // the server, so a line typed during shutdown goes nowhere instead of into a dead object.
+    std::thread([queue = server.admin_queue()] {
+      std::string line;
+      while (std::getline(std::cin, line)) queue->post(line);
+    }).detach();
   }
   server.run();
   const auto& c = server.counters();

@@ -1,5 +1,7 @@
 #include "server.hpp"
 
+#include "player.hpp"
+
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
 #include "world/data_paths.hpp"
@@ -11,23 +13,6 @@
 #include <thread>
 
 namespace foresight::server {
-
-struct Server::Player {
-  protocol::Endpoint endpoint;
-  uint32_t session = 0;
-  uint32_t avatar_id = 0;
-  std::string name;
-  std::unique_ptr<LookaheadAvatar> avatar;
-  Clock::time_point last_heard{};
-  bool any_input = false;
-  uint32_t last_input_seq = 0;  ///< Newest command applied.
-  ControlInput input;  ///< The command the player holds (applied in the look-ahead phase).
-  bool input_changed = true;
-  uint32_t ack_snapshot = 0;
-  uint32_t echo_client_time_ms = 0;
-  double tokens = 0;            ///< Packet rate limit (token bucket).
-  Clock::time_point tokens_at{};
-};
 
 namespace {
 
@@ -83,6 +68,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   grow_deadline_.resize(static_cast<size_t>(config_.threads));
   players_.reserve(static_cast<size_t>(config_.max_players));
   started_ = Clock::now();
+  if (!spawn_fighters(error)) return false;
   std::fprintf(stderr,
                "foresight-server: scene %s, library %s (%d segments, hash %016llx), UDP %s:%u, "
                "%d Hz ticks, %d Hz snapshots, %d look-ahead thread(s), strategy %d\n",
@@ -93,7 +79,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   return true;
 }
 
-int Server::num_players() const { return static_cast<int>(players_.size()); }
+int Server::num_players() const { return static_cast<int>(players_.size()) - num_fighters_; }
 
 const LookaheadAvatar* Server::avatar(uint32_t avatar_id) const {
   for (const auto& p : players_)
@@ -128,6 +114,10 @@ void Server::run_tick(Clock::time_point now) {
   receive(now);
   admit_joins(now);
   expire(now);
+  admin_queue_->take(admin_lines_);
+  for (const std::string& line : admin_lines_) std::printf("%s\n", admin_command(line).c_str());
+  if (!admin_lines_.empty()) std::fflush(stdout);
+  think_fighters(now);
   const Clock::time_point received = Clock::now();
   record.receive_ms = static_cast<float>(ms_between(tick_start, received));
   // Look ahead, then decide: the avatar's order of LookaheadAvatar (set_input, grow, step).
@@ -163,7 +153,7 @@ void Server::log_status() const {
                "foresight-server: tick %u, %d players; tick ms p50 %.2f p99 %.2f, %llu overruns; mean ms: "
                "receive %.2f, look-ahead %.1f of %.1f, advance %.2f, send %.2f; %lld expansions/tick, tree "
                "size mean %.0f min %d; %llu packets in, %llu dropped; joins %llu (%llu deferred, %llu refused); "
-               "%llu avatar contacts\n",
+               "%llu avatar contacts; %d fighters, %llu strikes, %llu hits\n",
                tick_, num_players(), stats_.tick_ms_percentile(50), stats_.tick_ms_percentile(99),
                static_cast<unsigned long long>(stats_.overruns()), mean.receive_ms, mean.lookahead_ms,
                mean.budget_ms, mean.advance_ms, mean.send_ms,
@@ -173,7 +163,9 @@ void Server::log_status() const {
                static_cast<unsigned long long>(counters_.sessions_opened),
                static_cast<unsigned long long>(counters_.joins_deferred),
                static_cast<unsigned long long>(counters_.refused),
-               static_cast<unsigned long long>(counters_.avatar_contacts));
+               static_cast<unsigned long long>(counters_.avatar_contacts), num_fighters_,
+               static_cast<unsigned long long>(counters_.fighter_strikes),
+               static_cast<unsigned long long>(counters_.fighter_hits));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -452,34 +444,78 @@ void Server::send_snapshots(Clock::time_point now) {
                         protocol::quantize_mm(s.segment_start.pos_m.y), s.incoming_transition,
                         static_cast<uint16_t>(s.segment), protocol::quantize_angle(s.segment_start.heading_rad),
                         static_cast<uint8_t>(std::clamp(s.frame, 0, 255)),
-                        p->avatar->tree().node(p->avatar->tree().root()).first_child < 0 ? protocol::kAvatarFallback
-                                                                                         : protocol::kAvatarNone,
+                        static_cast<uint8_t>(
+                            (p->avatar->tree().node(p->avatar->tree().root()).first_child < 0 ? protocol::kAvatarFallback
+                                                                                              : protocol::kAvatarNone) |
+                            (p->is_fighter() ? protocol::kAvatarNpc : protocol::kAvatarNone) |
+                            (p->is_fighter() && p->fighter->motion.striking() ? protocol::kAvatarStriking
+                                                                              : protocol::kAvatarNone)),
                         0);
     snapshot_states_.push_back(a);
   }
-  // Split over parts that fit the datagram budget (header and vector overhead < 100 bytes).
-  constexpr size_t kPerPart = (protocol::kMaxDatagramBytes - 100) / sizeof(wire::AvatarState);
-  const size_t total = snapshot_states_.size();
-  const size_t parts = std::max<size_t>(1, (total + kPerPart - 1) / kPerPart);
+  collect_fighter_poses();
+  plan_snapshot_parts();
   const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
+  const auto parts = static_cast<uint8_t>(snapshot_parts_.size());
   for (const auto& p : players_) {
-    for (size_t part = 0; part < parts; ++part) {
-      const size_t begin = part * kPerPart, end = std::min(total, begin + kPerPart);
+    if (p->is_fighter()) continue;
+    for (size_t part = 0; part < snapshot_parts_.size(); ++part) {
+      const SnapshotPart& plan = snapshot_parts_[part];
       // Mark the receiver's own avatar (flags are per receiver; restore after).
-      for (size_t i = begin; i < end; ++i)
+      for (size_t i = plan.avatars_begin; i < plan.avatars_end; ++i)
         if (snapshot_states_[i].id() == p->avatar_id)
           snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() | protocol::kAvatarYours);
       auto& fbb = writer_.begin();
-      const auto avatars = fbb.CreateVectorOfStructs(snapshot_states_.data() + begin, end - begin);
-      const auto bytes = writer_.finish(wire::CreateSnapshot(
-          fbb, snapshot_tick_, static_cast<uint8_t>(part), static_cast<uint8_t>(parts), p->last_input_seq,
-          p->echo_client_time_ms, server_ms, avatars));
-      for (size_t i = begin; i < end; ++i)
+      const auto avatars =
+          fbb.CreateVectorOfStructs(snapshot_states_.data() + plan.avatars_begin, plan.avatars_end - plan.avatars_begin);
+      flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::FighterPose>>> fighters = 0;
+      if (plan.fighters_end > plan.fighters_begin) {
+        fighter_offsets_.clear();
+        for (size_t f = plan.fighters_begin; f < plan.fighters_end; ++f) {
+          const FighterPoseOut& fp = fighter_poses_[f];
+          const auto rotations = fbb.CreateVector(fighter_rotations_.data() + fp.first_rotation, fp.num_rotations);
+          fighter_offsets_.push_back(wire::CreateFighterPose(fbb, fp.avatar, fp.morphology, fp.pelvis_mm[0],
+                                                              fp.pelvis_mm[1], fp.pelvis_mm[2], rotations));
+        }
+        fighters = fbb.CreateVector(fighter_offsets_);
+      }
+      flatbuffers::Offset<flatbuffers::Vector<const wire::StrikeEventState*>> events = 0;
+      if (plan.events && !snapshot_events_.empty())
+        events = fbb.CreateVectorOfStructs(snapshot_events_.data(), snapshot_events_.size());
+      const auto bytes = writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts,
+                                                             p->last_input_seq, p->echo_client_time_ms, server_ms,
+                                                             avatars, fighters, events));
+      for (size_t i = plan.avatars_begin; i < plan.avatars_end; ++i)
         if (snapshot_states_[i].id() == p->avatar_id)
           snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() & ~protocol::kAvatarYours);
       send(bytes, p->endpoint);
     }
   }
+}
+
+// Parts under the datagram budget: fighters' poses first, the strike events in part 0, then the
+// avatars. Sizes are upper bounds of what FlatBuffers writes (tables: vtable and alignment).
+void Server::plan_snapshot_parts() {
+  constexpr size_t kBudget = protocol::kMaxDatagramBytes - 100;  // header, vectors, Snapshot table
+  snapshot_parts_.clear();
+  size_t fighter = 0, avatar = 0;
+  do {
+    SnapshotPart part;
+    part.events = snapshot_parts_.empty();
+    size_t bytes = part.events ? snapshot_events_.size() * sizeof(wire::StrikeEventState) : 0;
+    part.fighters_begin = fighter;
+    while (fighter < fighter_poses_.size() &&
+           bytes + 64 + 4 * fighter_poses_[fighter].num_rotations <= kBudget)
+      bytes += 64 + 4 * fighter_poses_[fighter++].num_rotations;
+    part.fighters_end = fighter;
+    part.avatars_begin = avatar;
+    while (avatar < snapshot_states_.size() && bytes + sizeof(wire::AvatarState) <= kBudget) {
+      bytes += sizeof(wire::AvatarState);
+      ++avatar;
+    }
+    part.avatars_end = avatar;
+    snapshot_parts_.push_back(part);
+  } while ((fighter < fighter_poses_.size() || avatar < snapshot_states_.size()) && snapshot_parts_.size() < 255);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -488,7 +524,7 @@ void Server::send_snapshots(Clock::time_point now) {
 void Server::expire(Clock::time_point now) {
   const auto timeout = std::chrono::duration<double>(config_.session_timeout_s);
   for (size_t i = players_.size(); i-- > 0;) {
-    if (now - players_[i]->last_heard > timeout) {
+    if (!players_[i]->is_fighter() && now - players_[i]->last_heard > timeout) {
       std::fprintf(stderr, "foresight-server: player %u timed out\n", players_[i]->avatar_id);
       ++counters_.sessions_timed_out;
       remove_player(i);
@@ -510,16 +546,24 @@ void Server::remove_player(size_t index) {
 }
 
 bool Server::find_spawn(Placement& out) const {
-  // Around the scene's spawn points (in order), on rings 0.9 m apart: the first place where the
-  // idle segment is free of the scene and of every avatar's reservation.
+  std::vector<Placement> around;
+  around.reserve(scene_.spawns.size());
+  for (const SpawnPoint& sp : scene_.spawns) around.push_back({sp.pos_m, sp.heading_rad});
+  return find_free_place(around, out);
+}
+
+bool Server::find_free_place(std::span<const Placement> around, Placement& out) const {
+  // Around the given points (in order), on rings 0.9 m apart: the first place where the idle
+  // segment is free of the scene and of every avatar's reservation.
   const vec2 extent = scene_.bounds.max_m - scene_.bounds.min_m;
   const int rings = static_cast<int>(std::ceil(std::max(extent.x, extent.y) / 0.9f));
   for (int ring = 0; ring <= rings; ++ring) {
-    const int around = ring == 0 ? 1 : 6 * ring;
-    for (const SpawnPoint& sp : scene_.spawns) {
-      for (int k = 0; k < around; ++k) {
-        const float a = kTwoPi * static_cast<float>(k) / static_cast<float>(around);
-        const Placement p{sp.pos_m + 0.9f * static_cast<float>(ring) * vec2(std::sin(a), std::cos(a)), sp.heading_rad};
+    const int count = ring == 0 ? 1 : 6 * ring;
+    for (const Placement& centre : around) {
+      for (int k = 0; k < count; ++k) {
+        const float a = kTwoPi * static_cast<float>(k) / static_cast<float>(count);
+        const Placement p{centre.pos_m + 0.9f * static_cast<float>(ring) * vec2(std::sin(a), std::cos(a)),
+                          centre.heading_rad};
         if (!scene_.bounds.contains(p.pos_m)) continue;
         if (!segment_feasible(world_, library_.segment_shapes[static_cast<size_t>(spawn_segment_)], p)) continue;
         if (reservations_.blocks(-1, library_, spawn_segment_, p)) continue;
@@ -551,6 +595,7 @@ void Server::advance() {
       }
     }
   }
+  animate_fighters(due);
 }
 
 void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record) {

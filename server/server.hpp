@@ -14,6 +14,9 @@
 // expansion-budget mode); run() loops it at tick_hz until stop() is called.
 #include "lookahead/lookahead_avatar.hpp"
 #include "lookahead/reservations.hpp"
+#include "admin_commands.hpp"
+#include "fighters/fighter_assets.hpp"
+#include "fighters/fighter_npc.hpp"
 #include "lookahead_workers.hpp"
 #include "protocol/cookie.hpp"
 #include "protocol/packet.hpp"
@@ -29,6 +32,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -53,6 +57,9 @@ struct ServerCounters {
   uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
   uint64_t avatar_contacts = 0;     ///< Ticks with two avatars' bodies overlapping (must stay 0).
   uint64_t fallbacks = 0;
+  uint64_t fighter_strikes = 0;     ///< Strikes judged.
+  uint64_t fighter_hits = 0;
+  uint64_t fighter_strike_failures = 0;  ///< Decided but not startable (logged).
   protocol::DropCounters drops;
 };
 
@@ -80,8 +87,26 @@ class Server {
 
   /// A player's avatar, for tests and tools (nullptr if none with that id).
   const LookaheadAvatar* avatar(uint32_t avatar_id) const;
-  /// Avatar ids in play.
+  /// Avatar ids in play (players and fighters).
   std::vector<uint32_t> avatar_ids() const;
+  /// NPC fighters' avatar ids, in spawn order.
+  std::vector<uint32_t> fighter_ids() const;
+  int num_fighters() const { return num_fighters_; }
+  /// Runs one supervisor command (admin_commands.hpp) now and returns the reply. Tick thread only.
+  std::string admin_command(const std::string& line);
+  /// Where any thread (the console) queues commands; they run at the start of the next tick and
+  /// their replies go to stdout. Shared, so a console thread can outlive the server safely.
+  std::shared_ptr<AdminQueue> admin_queue() const { return admin_queue_; }
+  /// The fighters' shared data (database, morphologies), or nullptr without fighters.
+  const FighterAssets* fighter_assets() const { return fighter_assets_.get(); }
+  /// A fighter's body as last animated (what the next snapshot sends), or nullptr.
+  const PoseBuffers* fighter_pose(uint32_t avatar_id) const;
+  /// A supervisor's order to a fighter against its current target (ignored while it strikes).
+  /// False: no such fighter, or it has no target (no player).
+  bool order_fighter(uint32_t avatar_id, StrikeOrder order);
+  /// The most recent strike outcomes, oldest first (at most kStrikeEventsKept).
+  const std::deque<StrikeEvent>& strike_events() const { return strike_events_; }
+  static constexpr size_t kStrikeEventsKept = 64;
 
  private:
   struct Player;
@@ -111,8 +136,17 @@ class Server {
   void grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record);
   void send_snapshots(Clock::time_point now);
   void check_contacts();
+  // NPC fighters (server_fighters.cpp).
+  bool spawn_fighters(std::string& error);
+  void think_fighters(Clock::time_point now);
+  void animate_fighters(int64_t frames_due);
+  void collect_fighter_poses();
+  void plan_snapshot_parts();
+  void judge_strike(Player& fighter, const StrikeFrame& frame);
+  vec3 head_position(const LookaheadAvatar& avatar);
   void log_status() const;
   bool find_spawn(Placement& out) const;
+  bool find_free_place(std::span<const Placement> around, Placement& out) const;
   Player* find_player(const protocol::Endpoint& from);
   void send(std::span<const uint8_t> bytes, const protocol::Endpoint& to);
 
@@ -122,6 +156,10 @@ class Server {
   CollisionWorld world_;
   MotionTreeConfig tree_config_;
   int spawn_segment_ = -1;
+  int head_joint_ = -1;  ///< The library skeleton's head (fighters aim at it).
+  Pose head_pose_;       ///< Scratch for head_position.
+  std::vector<vec3> head_global_pos_;
+  std::vector<quat> head_global_rot_;
 
   protocol::UdpSocket socket_;
   protocol::CookieJar cookies_;
@@ -135,6 +173,23 @@ class Server {
   Reservations reservations_;
   std::unique_ptr<LookaheadWorkers> workers_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
+  // Fighters' poses and strike events for the snapshot being sent (server_fighters.cpp), and how
+  // the snapshot is cut into parts; all reused.
+  struct FighterPoseOut {
+    uint32_t avatar = 0;
+    uint8_t morphology = 0;
+    int32_t pelvis_mm[3] = {0, 0, 0};
+    size_t first_rotation = 0, num_rotations = 0;
+  };
+  struct SnapshotPart {
+    size_t fighters_begin = 0, fighters_end = 0, avatars_begin = 0, avatars_end = 0;
+    bool events = false;
+  };
+  std::vector<FighterPoseOut> fighter_poses_;
+  std::vector<uint32_t> fighter_rotations_;
+  std::vector<wire::StrikeEventState> snapshot_events_;
+  std::vector<SnapshotPart> snapshot_parts_;
+  std::vector<flatbuffers::Offset<wire::FighterPose>> fighter_offsets_;
   TreeSummaryWriter tree_summary_;                  ///< Reused for every TreeRequest.
   std::vector<double> grow_weight_;                 ///< Per player, reused.
   std::vector<int64_t> grow_expansions_;            ///< Per player, this tick.
@@ -144,6 +199,13 @@ class Server {
   uint32_t tick_ = 0;
   uint32_t next_session_ = 1;
   uint32_t next_avatar_ = 1;
+  int num_fighters_ = 0;
+  std::unique_ptr<FighterAssets> fighter_assets_;
+  std::unique_ptr<FighterRetriever> fighter_retriever_;
+  std::deque<StrikeEvent> strike_events_;
+  std::shared_ptr<AdminQueue> admin_queue_ = std::make_shared<AdminQueue>();
+  std::vector<std::string> admin_lines_;
+  uint32_t next_strike_event_ = 1;
   double snapshot_accumulator_ = 0;
   uint32_t snapshot_tick_ = 0;
   int challenges_this_tick_ = 0;

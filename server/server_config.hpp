@@ -41,6 +41,16 @@ struct ServerConfig {
   /// costs about a millisecond); verified joins beyond it wait in a queue, first come first served.
   int max_joins_per_tick = 4;
   MotionSource motions;            ///< Default library, or --motions DIR.
+  /// NPC fighters (issue 6): -1 = one per NPC spawn of the scene; N >= 0 = that many (beyond the
+  /// scene's NPC spawns they start at its player spawns: load tests).
+  int fighters = -1;
+  bool fighters_auto_attack = true;  ///< Own policy; false: they strike only when ordered.
+  double fighter_cooldown_s = 2.5;   ///< Between two strikes of the own policy.
+  int fighter_morphology = -1;      ///< -1: fighters cycle through the five morphologies; 0-4: all this one.
+  float fighter_hit_radius_m = 0.15f;  ///< A strike hits when the effector comes this close to the head.
+  std::string fighter_strikes;       ///< Extra BVH folder of strikes for the fighters' database.
+  std::string fighter_strikes_sidecar;  ///< Its annotations (empty: the folder's strikes.json, else detection).
+  std::string fighter_cache_dir;     ///< Where pose clusters are cached (empty: computed at start).
 };
 
 }  // namespace foresight::server

@@ -26,8 +26,12 @@ bool TreeSummaryWriter::add(const MotionTree& tree, int node, vec2 origin) {
   const uint16_t parent = parent_sample >= 0 ? static_cast<uint16_t>(parent_sample) : protocol::kTreeNoParent;
   const int depth = static_cast<int>(n.depth) - static_cast<int>(tree.node(tree.root()).depth);
   sample_of_[ni] = static_cast<int32_t>(samples_.size());
+  // Segment and start heading let the client rebuild the node's clip (ghost poses); its start
+  // position is its parent's end, already on the wire.
   samples_.emplace_back(to_cm16(n.end_pos_m.x - origin.x), to_cm16(n.end_pos_m.y - origin.y), parent,
-                        static_cast<uint8_t>(std::clamp(depth, 0, 255)), uint8_t{0});
+                        static_cast<uint8_t>(std::clamp(depth, 0, 255)), uint8_t{0},
+                        static_cast<uint16_t>(std::clamp(n.segment, 0, 0xFFFF)),
+                        protocol::quantize_angle(n.start.heading_rad));
   return true;
 }
 

@@ -55,10 +55,14 @@ const char* client_state_name(ClientState state) {
 
 ClientConnection::ClientConnection(const ClientConfig& config) : config_(config) {
   avatars_.reserve(config_.reserve_avatars);
+  fighters_.reserve(16);
+  new_strike_events_.reserve(16);
   tree_.end_m.reserve(kMaxTreeSamples);
   tree_.parent.reserve(kMaxTreeSamples);
   tree_.depth.reserve(kMaxTreeSamples);
   tree_.chosen.reserve(kMaxTreeSamples);
+  tree_.segment.reserve(kMaxTreeSamples);
+  tree_.start_heading_rad.reserve(kMaxTreeSamples);
 }
 
 bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std::string name,
@@ -86,6 +90,9 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   has_snapshot_ = has_own_avatar_ = false;
   snapshot_parts_seen_.reset();
   avatars_.clear();
+  fighters_.clear();
+  new_strike_events_.clear();
+  last_strike_sequence_ = 0;  // a new session numbers its events from 1 again
   tree_count_ = 0;
   newest_echo_ms_ = 0;
   sent_times_.fill({});
@@ -239,6 +246,11 @@ void ClientConnection::on_refuse(const wire::Refuse& m) {
   set_state(ClientState::kRefused, std::move(text));
 }
 
+void ClientConnection::take_strike_events(std::vector<StrikeEventInfo>& out) {
+  out.insert(out.end(), new_strike_events_.begin(), new_strike_events_.end());
+  new_strike_events_.clear();
+}
+
 void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
   const uint32_t tick = m.tick();
   const int parts = m.parts();
@@ -254,6 +266,7 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     snapshot_parts_ = parts;
     snapshot_parts_seen_.reset();
     avatars_.clear();
+    fighters_.clear();
     last_new_tick_at_ = now;
     ++snapshot_ticks_;
   } else if (tick != snapshot_tick_) {
@@ -274,6 +287,30 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
         own_avatar_tick_ = tick;
         has_own_avatar_ = true;
       }
+    }
+  }
+  if (const auto* list = m.fighters()) {
+    for (const wire::FighterPose* f : *list) {
+      const auto* rotations = f->rotations();
+      if (rotations == nullptr || rotations->size() > kMaxFighterJoints) {
+        drops_.add(DropReason::kInvalidInput);
+        continue;
+      }
+      FighterPoseState& out = fighters_.emplace_back();
+      out.avatar = f->avatar();
+      out.morphology = f->morphology();
+      out.pelvis_m = vec3(dequantize_mm(f->pelvis_x_mm()), dequantize_mm(f->pelvis_y_mm()), dequantize_mm(f->pelvis_z_mm()));
+      out.num_joints = static_cast<uint16_t>(rotations->size());
+      std::copy(rotations->begin(), rotations->end(), out.rotations.begin());
+    }
+  }
+  if (const auto* list = m.events()) {
+    for (const wire::StrikeEventState* e : *list) {
+      if (last_strike_sequence_ != 0 && !newer(e->sequence(), last_strike_sequence_)) continue;
+      new_strike_events_.push_back({e->sequence(), e->fighter(), e->target(),
+                                    vec3(dequantize_mm(e->x_mm()), dequantize_mm(e->y_mm()), dequantize_mm(e->z_mm())),
+                                    static_cast<float>(e->miss_mm()) * 0.001f, e->hit(), e->kick()});
+      last_strike_sequence_ = e->sequence();
     }
   }
   if (newer(m.ack_input(), ack_input_)) ack_input_ = m.ack_input();
@@ -339,12 +376,16 @@ void ClientConnection::on_tree(const wire::TreeSummary& m) {
   tree_.parent.resize(n);
   tree_.depth.resize(n);
   tree_.chosen.resize(n);
+  tree_.segment.resize(n);
+  tree_.start_heading_rad.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const wire::TreeNodeSample* s = sampled->Get(static_cast<flatbuffers::uoffset_t>(i));
     tree_.end_m[i] = tree_.origin_m + 0.01f * vec2(static_cast<float>(s->dx_cm()), static_cast<float>(s->dz_cm()));
     tree_.parent[i] = s->parent();
     tree_.depth[i] = s->depth();
     tree_.chosen[i] = (s->flags() & kTreeNodeChosen) != 0 ? 1 : 0;
+    tree_.segment[i] = s->segment();
+    tree_.start_heading_rad[i] = dequantize_angle(s->start_heading());
   }
   ++tree_count_;
 }

@@ -18,6 +18,7 @@
 #include "lookahead/control_input.hpp"
 #include "protocol/histogram.hpp"
 #include "protocol/packet.hpp"
+#include "protocol/protocol.hpp"
 #include "protocol/udp_socket.hpp"
 
 #include <array>
@@ -94,7 +95,35 @@ struct TreeView {
   std::vector<uint16_t> parent;    ///< Per sampled node: sample index of its parent, kTreeNoParent.
   std::vector<uint8_t> depth;      ///< Per sampled node: depth below the root.
   std::vector<uint8_t> chosen;     ///< Per sampled node: 1 on the branch the tree would select now.
+  std::vector<uint16_t> segment;   ///< Per sampled node: its motion-graph segment (unchecked:
+                                   ///< the receiver checks it against its library before use).
+  std::vector<float> start_heading_rad;  ///< Per sampled node: heading of its start placement.
+  /// Where node i's segment starts: its parent's end (the origin for the root).
+  Placement start(size_t i) const {
+    return {parent[i] == kTreeNoParent ? origin_m : end_m[parent[i]], start_heading_rad[i]};
+  }
   size_t size() const { return end_m.size(); }
+};
+
+/// An NPC fighter's pose from a snapshot, as sent (rotations still quantised: the client
+/// dequantises what it draws).
+struct FighterPoseState {
+  uint32_t avatar = 0;
+  uint8_t morphology = 0;
+  vec3 pelvis_m{0.0f};
+  uint16_t num_joints = 0;
+  std::array<uint32_t, kMaxFighterJoints> rotations{};
+};
+
+/// A strike's outcome (schema StrikeEventState), decoded.
+struct StrikeEventInfo {
+  uint32_t sequence = 0;
+  uint32_t fighter = 0;
+  uint32_t target = 0;
+  vec3 effector_m{0.0f};
+  float miss_m = 0.0f;
+  bool hit = false;
+  bool kick = false;
 };
 
 class ClientConnection {
@@ -153,6 +182,11 @@ class ClientConnection {
   int snapshot_parts() const { return snapshot_parts_; }
   int snapshot_parts_received() const { return static_cast<int>(snapshot_parts_seen_.count()); }
   std::span<const wire::AvatarState> avatars() const { return avatars_; }
+  /// The NPC fighters' poses of the newest tick (parts merged as they arrive).
+  std::span<const FighterPoseState> fighters() const { return fighters_; }
+  /// Strike events not taken before, in sequence order, appended to `out` (each once, however
+  /// many snapshots repeat it).
+  void take_strike_events(std::vector<StrikeEventInfo>& out);
   /// The client's own avatar as last seen (possibly from an older tick), or nullptr.
   const wire::AvatarState* own_avatar() const { return has_own_avatar_ ? &own_avatar_ : nullptr; }
   uint32_t own_avatar_tick() const { return own_avatar_tick_; }
@@ -233,6 +267,9 @@ class ClientConnection {
   int snapshot_parts_ = 0;
   std::bitset<256> snapshot_parts_seen_;
   std::vector<wire::AvatarState> avatars_;
+  std::vector<FighterPoseState> fighters_;
+  std::vector<StrikeEventInfo> new_strike_events_;
+  uint32_t last_strike_sequence_ = 0;
   bool has_own_avatar_ = false;
   wire::AvatarState own_avatar_{};
   uint32_t own_avatar_tick_ = 0;

@@ -6,7 +6,7 @@
 namespace foresight::protocol {
 
 /// Bumped whenever a peer of the previous version could misread a message.
-inline constexpr uint32_t kProtocolVersion = 1;
+inline constexpr uint32_t kProtocolVersion = 3;  // 2: TreeNodeSample carries segment, heading; 3: fighters
 
 /// Largest datagram anyone sends: under the common 1280-byte IPv6 minimum MTU after headers, so
 /// nothing is ever fragmented.
@@ -27,10 +27,17 @@ enum AvatarFlags : uint8_t {
   kAvatarYours = 1u << 0,     ///< The receiving client's own avatar.
   kAvatarFallback = 1u << 1,  ///< Stopped: nothing feasible ahead (idle fallback).
   kAvatarNpc = 1u << 2,       ///< Server-controlled.
+  kAvatarStriking = 1u << 3,  ///< An NPC fighter between the start of a strike and its end.
 };
 
-/// Most nodes one TreeSummary samples: 8 bytes each, so the packet stays under kMaxDatagramBytes.
-inline constexpr size_t kMaxTreeSamples = 128;
+/// Fighters' poses: at most this many joints are sent (the default skeleton has fewer).
+inline constexpr size_t kMaxFighterJoints = 64;
+/// A strike event is repeated in the snapshots of this many ticks after it (1 s at 30 Hz).
+inline constexpr uint32_t kStrikeEventRepeatTicks = 30;
+
+/// Most nodes one TreeSummary samples: 12 bytes each (since they carry segment and heading for
+/// ghost poses; 128 when they were 8), so a full summary stays under kMaxDatagramBytes.
+inline constexpr size_t kMaxTreeSamples = 88;
 /// TreeNodeSample::parent of the root.
 inline constexpr uint16_t kTreeNoParent = 0xFFFF;
 /// TreeNodeSample::flags bits.

@@ -107,6 +107,7 @@ inline server::ServerConfig test_server_config(const std::string& scene) {
   c.expansions_per_avatar = 200;
   c.threads = 1;
   c.status_every_s = 0;
+  c.fighters = 0;  // the scene's NPC fighters only where a test asks for them
   return c;
 }
 

@@ -386,8 +386,8 @@ TEST_F(ClientConnectionTest, TreeSummariesAreCopiedAndBadOnesDropped) {
     server_.send(w.finish(wire::CreateTreeSummary(fbb, 77, 3, 500, 1500, 2000, 1000, 2000, sampled)));
   };
   // Root ends 50 cm ahead of the origin; a chosen child and an ordinary one below it.
-  send_tree({wire::TreeNodeSample(0, 50, kTreeNoParent, 0, 0), wire::TreeNodeSample(50, 100, 0, 1, kTreeNodeChosen),
-             wire::TreeNodeSample(-50, 100, 0, 1, 0)});
+  send_tree({wire::TreeNodeSample(0, 50, kTreeNoParent, 0, 0, 0, 0), wire::TreeNodeSample(50, 100, 0, 1, kTreeNodeChosen, 12, 16384),
+             wire::TreeNodeSample(-50, 100, 0, 1, 0, 0, 0)});
   deliver(client_, at(200));
   ASSERT_EQ(client_.tree_count(), 1u);
   const TreeView& t = client_.tree();
@@ -403,16 +403,21 @@ TEST_F(ClientConnectionTest, TreeSummariesAreCopiedAndBadOnesDropped) {
   EXPECT_EQ(t.parent[2], 0u);
   EXPECT_EQ(t.chosen[1], 1u);
   EXPECT_EQ(t.chosen[2], 0u);
+  // Segment and start heading (a quarter turn) for ghost poses; node 1 starts at the root's end.
+  EXPECT_EQ(t.segment[1], 12u);
+  EXPECT_NEAR(t.start_heading_rad[1], 0.5f * kPi, 1e-4f);
+  EXPECT_NEAR(t.start(1).pos_m.y, t.end_m[0].y, 1e-6f);
+  EXPECT_NEAR(t.start(0).pos_m.x, t.origin_m.x, 1e-6f);
   // A parent that does not come before its node: dropped, the previous summary kept.
   const uint64_t invalid = client_.drops().by_reason[static_cast<size_t>(DropReason::kInvalidInput)];
-  send_tree({wire::TreeNodeSample(0, 0, kTreeNoParent, 0, 0), wire::TreeNodeSample(0, 0, 1, 1, 0)});
+  send_tree({wire::TreeNodeSample(0, 0, kTreeNoParent, 0, 0, 0, 0), wire::TreeNodeSample(0, 0, 1, 1, 0, 0, 0)});
   deliver(client_, at(250));
   EXPECT_EQ(client_.tree_count(), 1u);
   EXPECT_EQ(client_.tree().size(), 3u);
   EXPECT_EQ(client_.drops().by_reason[static_cast<size_t>(DropReason::kInvalidInput)], invalid + 1);
   // A full-size summary: copied into the reserved arrays without allocating.
-  std::vector<wire::TreeNodeSample> full(kMaxTreeSamples, wire::TreeNodeSample(1, 1, 0, 1, 0));
-  full[0] = wire::TreeNodeSample(0, 0, kTreeNoParent, 0, 0);
+  std::vector<wire::TreeNodeSample> full(kMaxTreeSamples, wire::TreeNodeSample(1, 1, 0, 1, 0, 0, 0));
+  full[0] = wire::TreeNodeSample(0, 0, kTreeNoParent, 0, 0, 0, 0);
   send_tree(full);
   pollfd p{client_.socket_fd(), POLLIN, 0};
   ::poll(&p, 1, 1000);

@@ -89,3 +89,40 @@ TEST(Quantize, AnyCommandBytesDecodeToAValidInput) {
 
 }  // namespace
 }  // namespace foresight::protocol
+
+namespace foresight::protocol {
+namespace {
+
+float rotation_error_deg(quat a, quat b) {
+  const float d = std::min(1.0f, std::abs(glm::dot(glm::normalize(a), glm::normalize(b))));
+  return glm::degrees(2.0f * std::acos(d));
+}
+
+TEST(Quantize, RotationsRoundTripWithinAQuarterOfADegree) {
+  uint32_t seed = 12345u;
+  auto next = [&seed] {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>(seed >> 8) / static_cast<float>(1u << 24) * 2.0f - 1.0f;
+  };
+  float worst = 0.0f;
+  for (int i = 0; i < 20000; ++i) {
+    const quat q = glm::normalize(quat(next(), next(), next(), next()));
+    const quat back = dequantize_rotation(quantize_rotation(q));
+    worst = std::max(worst, rotation_error_deg(q, back));
+  }
+  EXPECT_LT(worst, 0.25f);
+  // Components land where they were (not permuted): a rotation about +Y stays about +Y.
+  const quat about_y = glm::angleAxis(0.7f, vec3(0.0f, 1.0f, 0.0f));
+  const quat back = dequantize_rotation(quantize_rotation(about_y));
+  EXPECT_NEAR(back.y, about_y.y, 2e-3f);
+  EXPECT_NEAR(back.w, about_y.w, 2e-3f);
+  EXPECT_NEAR(back.x, 0.0f, 2e-3f);
+  // q and -q are one rotation; identity and broken input decode to a unit quaternion.
+  EXPECT_LT(rotation_error_deg(dequantize_rotation(quantize_rotation(-about_y)), about_y), 0.25f);
+  const quat nan_q = dequantize_rotation(quantize_rotation(quat(NAN, 0.0f, 0.0f, 0.0f)));
+  EXPECT_NEAR(glm::length(nan_q), 1.0f, 1e-5f);
+  EXPECT_NEAR(std::abs(nan_q.w), 1.0f, 1e-3f);
+}
+
+}  // namespace
+}  // namespace foresight::protocol

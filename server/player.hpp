@@ -1,0 +1,34 @@
+#pragma once
+// One avatar and whoever drives it: a client's session, or an NPC fighter (no endpoint, never
+// times out). Private to the server's translation units.
+#include "fighters/fighter_npc.hpp"
+#include "lookahead/lookahead_avatar.hpp"
+#include "protocol/udp_socket.hpp"
+#include "server.hpp"
+
+#include <memory>
+#include <string>
+
+namespace foresight::server {
+
+struct Server::Player {
+  protocol::Endpoint endpoint;
+  uint32_t session = 0;
+  uint32_t avatar_id = 0;
+  std::string name;
+  std::unique_ptr<LookaheadAvatar> avatar;
+  std::unique_ptr<FighterNpc> fighter;  ///< Set for NPC fighters.
+  Clock::time_point last_heard{};
+  bool any_input = false;
+  uint32_t last_input_seq = 0;  ///< Newest command applied.
+  ControlInput input;  ///< The command the player holds (applied in the look-ahead phase).
+  bool input_changed = true;
+  uint32_t ack_snapshot = 0;
+  uint32_t echo_client_time_ms = 0;
+  double tokens = 0;            ///< Packet rate limit (token bucket).
+  Clock::time_point tokens_at{};
+
+  bool is_fighter() const { return fighter != nullptr; }
+};
+
+}  // namespace foresight::server

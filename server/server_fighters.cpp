@@ -1,0 +1,280 @@
+// The server's NPC fighters (issue 6, docs/FIGHTER.md): spawned from the scene's NPC points, each
+// tick they perceive the nearest player and their brain steers their avatar like a player's keys.
+#include "server.hpp"
+
+#include "anim/fk.hpp"
+#include "fighter/fighter_rig.hpp"
+#include "fighter/morphology.hpp"
+#include "player.hpp"
+#include "protocol/quantize.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <limits>
+
+namespace foresight::server {
+
+bool Server::spawn_fighters(std::string& error) {
+  FighterRig rig;
+  std::string rig_error;
+  head_joint_ =
+      fighter_rig_from_skeleton(library_.skeleton, rig, rig_error) ? rig.head : library_.skeleton.find_joint("Head");
+  head_pose_.resize(library_.num_joints());
+  head_global_pos_.resize(static_cast<size_t>(library_.num_joints()));
+  head_global_rot_.resize(static_cast<size_t>(library_.num_joints()));
+
+  const int wanted = config_.fighters < 0 ? static_cast<int>(scene_.npcs.size()) : config_.fighters;
+  if (wanted == 0) return true;
+  const Clock::time_point t0 = Clock::now();
+  fighter_assets_ = fighter_assets_build(library_, config_.fighter_strikes, config_.fighter_strikes_sidecar,
+                                         config_.fighter_cache_dir, error);
+  if (!fighter_assets_) {
+    error = "fighters: " + error;
+    return false;
+  }
+  fighter_retriever_ = std::make_unique<FighterRetriever>(fighter_assets_->index);
+  std::fprintf(stderr, "foresight-server: fighter database: %zu strikes from %zu takes, %d pose clusters (%.0f ms)\n",
+               fighter_assets_->database.entries.size(), fighter_assets_->database.takes.size(),
+               fighter_assets_->index.k,
+               std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  FighterBrainConfig brain;
+  brain.auto_attack = config_.fighters_auto_attack;
+  brain.cooldown_s = static_cast<float>(config_.fighter_cooldown_s);
+  for (int i = 0; i < wanted; ++i) {
+    Placement at;
+    std::string name = "fighter-" + std::to_string(i + 1);
+    bool placed = false;
+    if (i < static_cast<int>(scene_.npcs.size())) {
+      const NpcSpawn& npc = scene_.npcs[static_cast<size_t>(i)];
+      name = npc.name;
+      const Placement spawn{npc.pos_m, npc.heading_rad};
+      placed = find_free_place({&spawn, 1}, at);
+    }
+    if (!placed) placed = find_spawn(at);
+    if (!placed) {
+      std::fprintf(stderr, "foresight-server: no free place for fighter '%s': not spawned\n", name.c_str());
+      continue;
+    }
+    auto p = std::make_unique<Player>();
+    p->avatar_id = next_avatar_++;
+    p->name = name;
+    p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, at);
+    const int morphology = config_.fighter_morphology >= 0 ? config_.fighter_morphology % kNumMorphologies
+                                                           : i % kNumMorphologies;
+    p->fighter = std::make_unique<FighterNpc>(brain, morphology, name);
+    p->fighter->motion.init(*fighter_assets_, p->fighter->morphology);
+    p->fighter->motion.pose_locomotion(library_, p->avatar->playback());
+    reservations_.add(static_cast<int>(p->avatar_id), library_, spawn_segment_, 0, at);
+    std::fprintf(stderr, "foresight-server: fighter %u '%s' (%s) at (%.1f, %.1f)\n", p->avatar_id, name.c_str(),
+                 morphology_specs()[static_cast<size_t>(p->fighter->morphology)].name, at.pos_m.x, at.pos_m.y);
+    players_.push_back(std::move(p));
+    ++num_fighters_;
+  }
+  return true;
+}
+
+std::string Server::admin_command(const std::string& line) {
+  std::istringstream in(line);
+  std::string verb, who, what;
+  in >> verb >> who >> what;
+  if (verb.empty()) return "";
+  if (verb == "help")
+    return "commands: fighters | order <id|all> punch|kick|any | auto on|off | help";
+  if (verb == "fighters") {
+    std::string out = std::to_string(num_fighters_) + " fighters";
+    static const char* phases[] = {"rest", "follow", "strike", "recover"};
+    for (const auto& f : players_) {
+      if (!f->is_fighter()) continue;
+      const FighterNpc& n = *f->fighter;
+      out += "\n  " + std::to_string(f->avatar_id) + " " + n.name + " (" +
+             morphology_specs()[static_cast<size_t>(n.morphology)].name + "): " +
+             phases[static_cast<int>(n.brain.phase())] + ", target " +
+             (n.target_id != 0 ? std::to_string(n.target_id) : std::string("none"));
+    }
+    out += "\n  strikes " + std::to_string(counters_.fighter_strikes) + ", hits " + std::to_string(counters_.fighter_hits);
+    return out;
+  }
+  if (verb == "auto") {
+    if (who != "on" && who != "off") return "usage: auto on|off";
+    for (const auto& f : players_)
+      if (f->is_fighter()) f->fighter->brain.set_auto_attack(who == "on");
+    return std::string("fighters' own policy ") + (who == "on" ? "on" : "off");
+  }
+  if (verb == "order") {
+    StrikeOrder order = StrikeOrder::kNone;
+    if (what == "punch") order = StrikeOrder::kPunch;
+    if (what == "kick") order = StrikeOrder::kKick;
+    if (what == "any") order = StrikeOrder::kAny;
+    if (who.empty() || order == StrikeOrder::kNone) return "usage: order <id|all> punch|kick|any";
+    std::vector<uint32_t> ids = fighter_ids();
+    if (who != "all") {
+      char* end = nullptr;
+      const unsigned long id = std::strtoul(who.c_str(), &end, 10);
+      if (end == who.c_str() || *end != '\0' || std::find(ids.begin(), ids.end(), id) == ids.end())
+        return "no fighter '" + who + "' (see: fighters)";
+      ids = {static_cast<uint32_t>(id)};
+    }
+    int ordered = 0;
+    for (uint32_t id : ids) ordered += order_fighter(id, order) ? 1 : 0;
+    return "ordered " + what + " to " + std::to_string(ordered) + " of " + std::to_string(ids.size()) +
+           " fighter(s) (a fighter without a player near has no target)";
+  }
+  return "unknown command '" + verb + "' (help lists them)";
+}
+
+const PoseBuffers* Server::fighter_pose(uint32_t avatar_id) const {
+  for (const auto& f : players_)
+    if (f->is_fighter() && f->avatar_id == avatar_id) return &f->fighter->motion.pose();
+  return nullptr;
+}
+
+bool Server::order_fighter(uint32_t avatar_id, StrikeOrder order) {
+  for (const auto& f : players_) {
+    if (!f->is_fighter() || f->avatar_id != avatar_id) continue;
+    // The target is its current one (the nearest player), its head stored now.
+    for (const auto& p : players_)
+      if (!p->is_fighter() && p->avatar_id == f->fighter->target_id) {
+        f->fighter->brain.order(order, static_cast<double>(tick_) / config_.tick_hz, p->avatar_id,
+                                head_position(*p->avatar));
+        return true;
+      }
+    return false;  // no target yet
+  }
+  return false;
+}
+
+std::vector<uint32_t> Server::fighter_ids() const {
+  std::vector<uint32_t> ids;
+  for (const auto& p : players_)
+    if (p->is_fighter()) ids.push_back(p->avatar_id);
+  return ids;
+}
+
+vec3 Server::head_position(const LookaheadAvatar& avatar) {
+  const PlaybackState& s = avatar.playback();
+  const Placement root = avatar.root();
+  if (head_joint_ < 0) return vec3(root.pos_m.x, 1.6f, root.pos_m.y);
+  motion_library_sample(library_, s.segment, s.frame, s.segment_start, s.incoming_transition, head_pose_);
+  fk_pose(library_.skeleton, head_pose_.local_pos_m, head_pose_.local_rot, head_global_pos_, head_global_rot_);
+  return head_global_pos_[static_cast<size_t>(head_joint_)];
+}
+
+void Server::think_fighters(Clock::time_point) {
+  if (num_fighters_ == 0) return;
+  const double now_s = static_cast<double>(tick_) / config_.tick_hz;
+  for (const auto& f : players_) {
+    if (!f->is_fighter()) continue;
+    FighterNpc& npc = *f->fighter;
+    const Placement self = f->avatar->root();
+    // The nearest player is the target (fighters do not fight each other).
+    const Player* target = nullptr;
+    float best = std::numeric_limits<float>::max();
+    for (const auto& p : players_) {
+      if (p->is_fighter()) continue;
+      const float d = glm::length(p->avatar->root().pos_m - self.pos_m);
+      if (d < best) {
+        best = d;
+        target = p.get();
+      }
+    }
+    FighterSenses senses;
+    senses.now_s = now_s;
+    senses.self_pos_m = self.pos_m;
+    const PlaybackState& s = f->avatar->playback();
+    senses.can_strike = (library_.graph.segments[static_cast<size_t>(s.segment)].tags & kTagIdle) != 0;
+    if (target != nullptr) {
+      senses.has_target = true;
+      senses.target_id = target->avatar_id;
+      senses.target_pos_m = target->avatar->root().pos_m;
+      senses.target_head_m = head_position(*target->avatar);
+    }
+    npc.target_id = senses.has_target ? senses.target_id : 0;
+    const FighterDecision d = npc.brain.think(senses);
+    if (d.strike) {
+      StrikeChoice choice;
+      std::string error;
+      if (npc.motion.start_strike(*fighter_retriever_, d.kind, d.target_head_m, self, choice, error)) {
+        npc.strike_kind = d.kind;
+        npc.strike_target = d.target_id;
+        npc.strike_target_head_m = d.target_head_m;
+      } else {
+        ++counters_.fighter_strike_failures;
+        std::fprintf(stderr, "foresight-server: fighter %u could not strike: %s\n", f->avatar_id, error.c_str());
+        npc.brain.strike_finished(now_s);
+      }
+    }
+    // The brain's world direction as a player's keys with the camera looking along +Z
+    // (control_world_direction: yaw 0 puts forward at +Z and right at -X).
+    ControlInput in;
+    in.camera_dir = vec2(-d.move_world.x, d.move_world.y);
+    if (in.camera_dir != f->input.camera_dir || in.camera_yaw_rad != f->input.camera_yaw_rad) {
+      f->input = in;
+      f->input_changed = true;
+    }
+  }
+}
+
+void Server::animate_fighters(int64_t frames_due) {
+  if (num_fighters_ == 0) return;
+  const double now_s = static_cast<double>(tick_) / config_.tick_hz;
+  for (const auto& f : players_) {
+    if (!f->is_fighter()) continue;
+    FighterMotion& motion = f->fighter->motion;
+    for (int64_t k = 0; k < frames_due && motion.striking(); ++k) {
+      const StrikeFrame frame = motion.step_strike();
+      if (frame.hit_frame) judge_strike(*f, frame);
+      if (frame.finished) f->fighter->brain.strike_finished(now_s);
+    }
+    if (!motion.striking()) motion.pose_locomotion(library_, f->avatar->playback());
+  }
+}
+
+void Server::collect_fighter_poses() {
+  fighter_poses_.clear();
+  fighter_rotations_.clear();
+  snapshot_events_.clear();
+  if (num_fighters_ == 0) return;
+  for (const auto& f : players_) {
+    if (!f->is_fighter()) continue;
+    const PoseBuffers& pose = f->fighter->motion.pose();
+    FighterPoseOut out;
+    out.avatar = f->avatar_id;
+    out.morphology = static_cast<uint8_t>(f->fighter->morphology);
+    for (int k = 0; k < 3; ++k) out.pelvis_mm[k] = protocol::quantize_mm(pose.local_pos_m[0][k]);
+    out.first_rotation = fighter_rotations_.size();
+    out.num_rotations = std::min(pose.local_rot.size(), protocol::kMaxFighterJoints);
+    for (size_t j = 0; j < out.num_rotations; ++j) fighter_rotations_.push_back(protocol::quantize_rotation(pose.local_rot[j]));
+    fighter_poses_.push_back(out);
+  }
+  for (const StrikeEvent& e : strike_events_) {
+    if (tick_ - e.tick > protocol::kStrikeEventRepeatTicks) continue;
+    snapshot_events_.emplace_back(e.sequence, e.fighter, e.target, protocol::quantize_mm(e.effector_m.x),
+                                  protocol::quantize_mm(e.effector_m.y), protocol::quantize_mm(e.effector_m.z),
+                                  static_cast<uint16_t>(std::clamp(e.miss_m * 1000.0f, 0.0f, 65535.0f)), e.hit,
+                                  e.kick);
+  }
+}
+
+void Server::judge_strike(Player& f, const StrikeFrame& frame) {
+  const vec3 effector_m = frame.effector_m;
+  StrikeEvent e;
+  e.sequence = next_strike_event_++;
+  e.tick = tick_;
+  e.fighter = f.avatar_id;
+  e.target = f.fighter->strike_target;
+  e.kick = f.fighter->strike_kind == StrikeOrder::kKick;
+  e.effector_m = effector_m;
+  e.reach_error_m = frame.reach_error_m;
+  e.miss_m = std::numeric_limits<float>::max();
+  for (const auto& p : players_)
+    if (!p->is_fighter() && p->avatar_id == e.target) e.miss_m = glm::length(head_position(*p->avatar) - effector_m);
+  e.hit = e.miss_m <= config_.fighter_hit_radius_m;
+  ++counters_.fighter_strikes;
+  if (e.hit) ++counters_.fighter_hits;
+  if (strike_events_.size() >= kStrikeEventsKept) strike_events_.pop_front();
+  strike_events_.push_back(e);
+}
+
+}  // namespace foresight::server
