@@ -1,7 +1,7 @@
 // NPC fighters' streamed poses on the client (fighter_poses.hpp): the history per fighter, played
 // at the avatars' render time (slerp / lerp between the bracketing snapshots, held when late or
 // early), and the world joints rebuilt on the morphology's skeleton.
-#include "alloc_counter.hpp"
+#include "support/alloc_counter.hpp"
 #include "anim/fk.hpp"
 #include "fighter_poses.hpp"
 #include "protocol/quantize.hpp"

@@ -1,5 +1,5 @@
 // The client's bookkeeping of strike events (strike_feedback.hpp): counters, markers, flashes.
-#include "alloc_counter.hpp"
+#include "support/alloc_counter.hpp"
 #include "debug_overlay.hpp"
 #include "strike_feedback.hpp"
 

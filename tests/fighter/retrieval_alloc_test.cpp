@@ -1,27 +1,15 @@
 // retrieve() must not allocate once the retriever exists (it runs in the server tick). Counted by
-// replacing the global operator new for this test binary; counting is on only inside the test.
+// the test binary's replaced global operator new (support/alloc_counter).
 #include "fighter/retrieval.hpp"
+
+#include "support/alloc_counter.hpp"
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
 namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
 // Volatile so the compiler cannot elide the probe's new/delete pair.
 int* volatile g_probe = nullptr;
 }  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace foresight {
 namespace {
@@ -41,24 +29,23 @@ TEST(RetrievalAllocation, RetrieveAllocatesNothing) {
   q.body_size_m = e.body_size_m;
   RetrievalResult r;
   // The check itself must be able to fail: an allocation while counting is seen.
-  g_counting = true;
-  g_probe = new int(3);
-  g_counting = false;
+  {
+    test::AllocationCount probe;
+    g_probe = new int(3);
+    ASSERT_EQ(probe.allocations(), 1);
+  }
   delete g_probe;
-  ASSERT_EQ(g_allocations.load(), 1);
-  g_allocations = 0;
 
   int found = 0;
-  g_counting = true;
+  test::AllocationCount count;
   for (int i = 0; i < 200; ++i) {
     q.target_m = vec3(0.01f * static_cast<float>(i % 40) - 0.2f, 0.5f + 0.006f * static_cast<float>(i), 0.4f + 0.5f * static_cast<float>(i % 7) / 7.0f);
     q.kind = i % 3 == 0 ? std::nullopt : std::optional<StrikeKind>(i % 3 == 1 ? StrikeKind::kPunch : StrikeKind::kKick);
     q.side = i % 5 == 0 ? std::optional<StrikeSide>(StrikeSide::kLeft) : std::nullopt;
     found += retriever.retrieve(q, RetrievalParams{}, r) ? 1 : 0;
   }
-  g_counting = false;
   EXPECT_EQ(found, 200);
-  EXPECT_EQ(g_allocations.load(), 0);
+  EXPECT_EQ(count.allocations(), 0);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // ClientConnection against a scripted fake server on loopback, with an injected clock: the
 // handshake, Inputs with redundancy, idle heartbeats, snapshot merging, round-trip times,
 // refusals, timeouts and every kind of datagram the client must drop.
-#include "alloc_counter.hpp"
+#include "support/alloc_counter.hpp"
 #include "protocol/client_connection.hpp"
 #include "protocol/input_packet.hpp"
 

@@ -1,30 +1,16 @@
-// The planner allocates only in footstep_planner_init: planning, sliding, sampling and cutting a
-// synthetic profile run with zero heap allocations (counted by replacing the global operator new
-// in this test executable).
+// The planners allocate only in their init: footstep planning, sliding, sampling and cutting a
+// synthetic profile, and the upper-body planner and the walker stepping through the terrain
+// scene, run with zero heap allocations (support/alloc_counter replaces the global operator new).
+#include "terrain/terrain_walker.hpp"
 #include "terrain_test_util.hpp"
+
+#include "support/alloc_counter.hpp"
+#include "world/data_paths.hpp"
+#include "world/scene_load.hpp"
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-// GCC sees free() on memory from "operator new" and warns, not knowing both are replaced here.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include <memory>
 
 namespace foresight::terrain {
 namespace {
@@ -34,8 +20,8 @@ TEST(FootstepPlannerAllocation, NoHeapAllocationOnceInitialised) {
   ASSERT_TRUE(footstep_planner_init(planner, FootstepPlannerConfig{}));
   static GroundProfile profile;  // 4 KiB: kept off the stack, allocated once.
   static FootstepPlan plan;
-  const long before = g_allocations.load();
   int steps = 0;
+  foresight::test::AllocationCount count;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     ground_profile_random(profile, seed, 14.0f);
     FootstepWindow window;
@@ -48,8 +34,25 @@ TEST(FootstepPlannerAllocation, NoHeapAllocationOnceInitialised) {
       ++steps;
     }
   }
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(count.allocations(), 0);
   EXPECT_GT(steps, 50);
+}
+
+TEST(TerrainWalkerAllocation, StepsThroughTheDoorwayWithoutAllocating) {
+  Scene scene;
+  std::string error;
+  ASSERT_TRUE(scene_load(scene_path("terrain"), scene, error)) << error;
+  auto walker = std::make_unique<TerrainWalker>();
+  ASSERT_TRUE(terrain_walker_init(*walker, TerrainWalkerConfig{}));
+  ASSERT_TRUE(terrain_walker_start(*walker, scene, GroundPath{{11.0f, 15.0f}, kPi / 2, 0.0f}, 6.0f));
+  int steps = 0;
+  {
+    foresight::test::AllocationCount count;
+    while (terrain_walker_travelled_m(*walker) < 4.0f && terrain_walker_step(*walker, scene) == TerrainStepStatus::kOk)
+      ++steps;
+    EXPECT_EQ(count.allocations(), 0);
+  }
+  EXPECT_GE(terrain_walker_travelled_m(*walker), 4.0f) << "stopped after " << steps << " steps";
 }
 
 }  // namespace

@@ -1,0 +1,54 @@
+#include "terrain/terrain_walker.hpp"
+
+namespace foresight::terrain {
+
+const char* terrain_step_status_name(TerrainStepStatus status) {
+  switch (status) {
+    case TerrainStepStatus::kOk: return "ok";
+    case TerrainStepStatus::kFootstepsFailed: return "footsteps failed";
+    case TerrainStepStatus::kUpperBodyFailed: return "upper body failed";
+    case TerrainStepStatus::kNotStarted: return "not started";
+  }
+  return "?";
+}
+
+bool terrain_walker_init(TerrainWalker& walker, const TerrainWalkerConfig& config) {
+  walker.config = config;
+  walker.started = false;
+  return config.speed_mps > 0.0f && config.dt_s > 0.0f && footstep_planner_init(walker.footsteps, config.footsteps) &&
+         upper_body_planner_init(walker.upper_body, config.upper_body);
+}
+
+bool terrain_walker_start(TerrainWalker& walker, const Scene& scene, const GroundPath& path, float length_m,
+                          float start_x_m) {
+  walker.started = false;
+  if (!ground_profile_from_scene(scene, path, length_m, ProfileCutOptions{}, walker.profile)) return false;
+  walker.window = FootstepWindow{};
+  walker.window.rear_x_m = walker.window.stance_x_m = start_x_m;
+  walker.swing_left = true;
+  walker.fresh = true;
+  walker.started = true;
+  return true;
+}
+
+TerrainStepStatus terrain_walker_step(TerrainWalker& walker, const Scene& scene) {
+  if (!walker.started) return TerrainStepStatus::kNotStarted;
+  const TerrainWalkerConfig& c = walker.config;
+  if (footstep_plan(walker.footsteps, walker.profile, walker.window, walker.plan) != FootstepStatus::kOk)
+    return TerrainStepStatus::kFootstepsFailed;
+  walker.track_frames = pelvis_track_from_plan(walker.plan, c.footsteps.walk, walker.profile.path, c.speed_mps,
+                                               c.dt_s, walker.swing_left, walker.track, walker.step_frames);
+  const std::span<const PelvisFrame> track(walker.track.data(), static_cast<size_t>(walker.track_frames));
+  if (walker.fresh) walker.upper = upper_body_pattern_config(c.upper_body.body, track[0]);
+  gather_upper_body_obstacles(scene, track, c.obstacle_reach_m, c.upper_obstacle_min_top_m, walker.obstacles);
+  if (upper_body_plan(walker.upper_body, track, c.dt_s, walker.obstacles, walker.upper, walker.upper_plan) !=
+      UpperBodyStatus::kOk)
+    return TerrainStepStatus::kUpperBodyFailed;
+  footstep_window_slide(walker.footsteps, walker.plan, walker.window);
+  walker.upper = walker.upper_plan.frames[static_cast<size_t>(walker.step_frames)];
+  walker.swing_left = !walker.swing_left;
+  walker.fresh = false;
+  return TerrainStepStatus::kOk;
+}
+
+}  // namespace foresight::terrain
