@@ -5,8 +5,10 @@
 //   foresight-bench lookahead [--scene maze] [--strategy command] [--json]
 //   foresight-bench client [--avatars 1000] [--seconds 3] [--json]   (when foresight_client is built)
 //   foresight-bench fighter [--figure DIR] [--json]
+//   foresight-bench terrain [--seed 1] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
+#include "terrain_bench.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -74,6 +76,14 @@ int main(int argc, char** argv) {
   fi->add_option("--figure", fighter.figure_dir, "Also write the adapted strikes on five morphologies (SVG) here");
   fi->add_flag("--json", fighter.json, "Print one JSON object as the last line");
 
+  TerrainBenchCommand terrain;
+  auto* te = app.add_subcommand("terrain", "Footstep and upper-body planning on the terrain scene and seeded profiles");
+  te->add_option("--scene", terrain.options.scene, "Built-in scene name or scene .json path");
+  te->add_option("--window", terrain.options.window_steps, "Footstep window n")->check(CLI::Range(1, 4));
+  te->add_option("--intervals", terrain.options.intervals, "Step length intervals m")->check(CLI::Range(1, 16));
+  te->add_option("--seed", terrain.options.seed, "Seed of paths and profiles");
+  te->add_flag("--json", terrain.json, "Print one JSON object as the last line");
+
   LoadReportOptions load;
   auto* lr = app.add_subcommand("load-report", "Table, CSV and chart from foresight-bots --json outputs (scripts/loadtest)");
   lr->add_option("inputs", load.inputs, "Files ending in a foresight-bots --json line")->required();
@@ -86,6 +96,7 @@ int main(int argc, char** argv) {
 #endif
   if (*l) return bench_lookahead(lookahead);
   if (*fi) return bench_fighter(fighter);
+  if (*te) return bench_terrain(terrain);
   if (*c) return bench_collision(collision);
   if (*b) return bench_bvh(bvh);
   return bench_graph(graph);

@@ -1,6 +1,9 @@
 #include "terrain_bench.hpp"
 
-#include "terrain/footstep_planner.hpp"
+#include "math/splitmix64.hpp"
+
+#include "machine_info.hpp"
+#include "terrain/terrain_walker.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 
@@ -8,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 namespace foresight::bench {
@@ -23,19 +27,6 @@ double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
-// splitmix64: the same paths on every platform (std distributions differ between libraries).
-struct Rng {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float uniform(float lo, float hi) {
-    return lo + (hi - lo) * static_cast<float>(next() >> 40) * (1.0f / 16777216.0f);
-  }
-};
 
 float ground_at(const GroundProfile& profile, float x) {
   float h = NAN;
@@ -104,6 +95,76 @@ struct Walker {
   }
 };
 
+// Whole-actor walks: footsteps and upper body, the upper body's planning timed alone.
+void run_upper_body_walks(const Scene& scene, const TerrainBenchOptions& options, TerrainBenchResult& r) {
+  auto walker = std::make_unique<TerrainWalker>();
+  TerrainWalkerConfig config;
+  config.footsteps.window_steps = options.window_steps;
+  config.footsteps.intervals = options.intervals;
+  if (!terrain_walker_init(*walker, config)) return;
+  auto timing = std::make_unique<UpperBodyPlan>();
+  SplitMix64 rng{options.seed ^ 0x5eedull};
+  std::vector<double> us;
+  double checks = 0.0;
+  const UpperBodyParams& body = config.upper_body.body;
+  for (int i = 0; i < options.upper_body_walks; ++i) {
+    GroundPath path;
+    float walk_m = 5.0f;
+    switch (i % 3) {
+      case 0:  // through the low doorway (x 13.8..14.2, z 14.4..15.6, lintel at 1.4 m)
+        path = {{rng.uniform(9.5f, 11.5f), 15.0f + rng.uniform(-0.2f, 0.2f)}, radians(90.0f + rng.uniform(-3.0f, 3.0f)), 0.0f};
+        break;
+      case 1:  // along the shelf (x 15.5..19.7, z 19.1..19.7, 1.1..1.3 m) on the right hand
+        path = {{rng.uniform(14.8f, 15.4f), rng.uniform(18.7f, 18.9f)}, radians(90.0f), 0.0f};
+        walk_m = 3.4f;
+        break;
+      default:  // anywhere, east +-25 degrees
+        path = {{rng.uniform(0.8f, 12.0f), rng.uniform(0.8f, 19.2f)}, radians(90.0f + rng.uniform(-25.0f, 25.0f)), 0.0f};
+        break;
+    }
+    if (!terrain_walker_start(*walker, scene, path, walk_m + 5.0f)) continue;
+    ++r.upper_body_walks;
+    bool stopped = false;
+    for (int guard = 0; guard < 40 && terrain_walker_travelled_m(*walker) < walk_m; ++guard) {
+      const UpperBodyConfig before = walker->upper;
+      const bool fresh = walker->fresh;
+      const TerrainStepStatus status = terrain_walker_step(*walker, scene);
+      if (status == TerrainStepStatus::kFootstepsFailed) break;  // a wall for the legs: not the upper body's
+      const std::span<const PelvisFrame> track(walker->track.data(), static_cast<size_t>(walker->track_frames));
+      const UpperBodyConfig start = fresh ? upper_body_pattern_config(body, track[0]) : before;
+      const auto t0 = Clock::now();
+      upper_body_plan(walker->upper_body, track, config.dt_s, walker->obstacles, start, *timing);
+      us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+      ++r.upper_body_plans;
+      for (const UpperBodyPartStats& p : timing->parts) checks += p.checks;
+      if (status != TerrainStepStatus::kOk) {
+        ++r.upper_body_plans_failed;
+        stopped = true;
+        break;
+      }
+      for (int t = 0; t <= walker->step_frames; ++t) {
+        const UpperBodyConfig& c = walker->upper_plan.frames[static_cast<size_t>(t)];
+        const PelvisFrame& f = walker->track[static_cast<size_t>(t)];
+        r.max_waist_flexion_rad = std::max(r.max_waist_flexion_rad, c.waist[0]);
+        BodySpheres s;
+        waist_spheres(body, f, c.waist, s);
+        bool clear = spheres_clear(s, walker->obstacles);
+        for (BodyPart arm : {BodyPart::kLeftArm, BodyPart::kRightArm}) {
+          arm_spheres(body, f, c.waist, arm, c.part(arm), s);
+          clear = clear && spheres_clear(s, walker->obstacles);
+        }
+        r.upper_body_collisions += clear ? 0 : 1;
+      }
+    }
+    r.upper_body_walks_completed += stopped ? 0 : 1;
+  }
+  r.upper_body_plan_us_p50 = percentile(us, 0.5);
+  r.upper_body_plan_us_p99 = percentile(us, 0.99);
+  r.upper_body_plan_us_max = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
+  r.upper_body_checks_per_plan = r.upper_body_plans > 0 ? checks / r.upper_body_plans : 0.0;
+  r.collisions += r.upper_body_collisions;
+}
+
 }  // namespace
 
 TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options) {
@@ -122,7 +183,7 @@ TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options) {
 
   // Scene paths: start anywhere walkable, heading east +-25 degrees (toward the gap, the hill, the
   // steps and the doorway), curvature up to 1/25 m.
-  Rng rng{options.seed};
+  SplitMix64 rng{options.seed};
   GroundProfile profile;
   const float cut_m = options.walk_m + 4.0f;  // The window and its viability look-ahead.
   for (int accepted = 0, tries = 0; accepted < options.scene_paths && tries < 100 * options.scene_paths; ++tries) {
@@ -165,6 +226,7 @@ TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options) {
   r.success_rate = r.paths > 0 ? static_cast<double>(r.paths_completed) / r.paths : 0.0;
   r.configs_per_plan = r.plans > 0 ? walker.configs / r.plans : 0.0;
   r.step_checks_per_plan = r.plans > 0 ? walker.checks / r.plans : 0.0;
+  run_upper_body_walks(scene, options, r);
   return r;
 }
 
@@ -193,9 +255,46 @@ std::string to_json(const TerrainBenchResult& r) {
     out += "\":" + std::to_string(r.failures[k]);
   }
   out += "}";
+  std::snprintf(buf, sizeof buf,
+                ",\"upper_body_plan_us_p50\":%.2f,\"upper_body_plan_us_p99\":%.2f,\"upper_body_plan_us_max\":%.2f,"
+                "\"upper_body_plans\":%d,\"upper_body_plans_failed\":%d,\"upper_body_walks\":%d,"
+                "\"upper_body_walks_completed\":%d,\"upper_body_collisions\":%d,\"upper_body_checks_per_plan\":%.1f,"
+                "\"max_waist_flexion_rad\":%.3f",
+                r.upper_body_plan_us_p50, r.upper_body_plan_us_p99, r.upper_body_plan_us_max, r.upper_body_plans,
+                r.upper_body_plans_failed, r.upper_body_walks, r.upper_body_walks_completed, r.upper_body_collisions,
+                r.upper_body_checks_per_plan, r.max_waist_flexion_rad);
+  out += buf;
   if (!r.error.empty()) out += ",\"error\":\"" + r.error + "\"";
   out += "}";
   return out;
+}
+
+int bench_terrain(const TerrainBenchCommand& command) {
+  std::printf("machine: %s\n", machine_description().c_str());
+  const TerrainBenchResult r = run_terrain_bench(command.options);
+  if (!r.error.empty()) {
+    std::fprintf(stderr, "foresight-bench terrain: %s\n", r.error.c_str());
+    return 1;
+  }
+  std::printf("footsteps (n = %d, m = %d): %d walks, %d completed (%.1f %%), %d plans, %d steps\n",
+              command.options.window_steps, command.options.intervals, r.paths, r.paths_completed,
+              100.0 * r.success_rate, r.plans, r.steps);
+  std::printf("  plan us p50 %.1f p99 %.1f max %.1f; %.1f configurations, %.1f step checks per plan\n",
+              r.footstep_plan_us_p50, r.footstep_plan_us_p99, r.footstep_plan_us_max, r.configs_per_plan,
+              r.step_checks_per_plan);
+  std::printf("upper body: %d walks, %d not stopped by it; %d plans (%d failed)\n", r.upper_body_walks,
+              r.upper_body_walks_completed, r.upper_body_plans, r.upper_body_plans_failed);
+  std::printf("  plan us p50 %.1f p99 %.1f max %.1f; %.0f collision checks per plan; deepest bend %.2f rad\n",
+              r.upper_body_plan_us_p50, r.upper_body_plan_us_p99, r.upper_body_plan_us_max,
+              r.upper_body_checks_per_plan, r.max_waist_flexion_rad);
+  std::printf("collisions %d (upper body %d), non-finite plans %d\n", r.collisions, r.upper_body_collisions,
+              r.non_finite);
+  if (command.json) {
+    std::string j = to_json(r);
+    j.pop_back();
+    std::printf("%s,%s}\n", j.c_str(), machine_json_fields().c_str());
+  }
+  return r.collisions == 0 && r.non_finite == 0 ? 0 : 1;
 }
 
 }  // namespace foresight::bench

@@ -10,7 +10,12 @@
 // walking into a wall is a correct failure, not a planner's. A walk starts with the feet together and succeeds when the stance
 // foot has gone `walk_m` along the path; it fails at the first plan that fails.
 // Collisions (must be 0): executed steps whose landing foot has a gap under it, or whose swing
-// sole (heel, ankle, toe, 33 phases) goes more than 5 mm below the profile.
+// sole (heel, ankle, toe, 33 phases) goes more than 5 mm below the profile; and committed frames
+// whose upper-body volumes touch a box.
+//
+// The upper body: whole-actor walks (terrain::TerrainWalker) through the low doorway, along the
+// shelf and on random scene paths; each upper_body_plan call is timed alone (re-run on the same
+// window, which gives the same plan: it is deterministic).
 #include <array>
 #include <cstdint>
 #include <string>
@@ -24,6 +29,7 @@ struct TerrainBenchOptions {
   float walk_m = 7.0f;            ///< Scene paths; synthetic walks go 10 m.
   int window_steps = 3;           ///< n.
   int intervals = 13;             ///< m.
+  int upper_body_walks = 48;      ///< Walks of the whole actor (footsteps + upper body).
   std::uint64_t seed = 1;
 };
 
@@ -41,6 +47,14 @@ struct TerrainBenchResult {
   int non_finite = 0;       ///< Plans with a NaN/inf anywhere (must be 0).
   double configs_per_plan = 0.0, step_checks_per_plan = 0.0;
   std::array<int, 11> failures{};  ///< Failed walks by terrain::FootstepStatus.
+  // The upper body (paper 5), planned along each committed window of whole-actor walks: through
+  // the low doorway, along the shelf, and on random scene paths.
+  double upper_body_plan_us_p50 = 0.0, upper_body_plan_us_p99 = 0.0, upper_body_plan_us_max = 0.0;
+  int upper_body_plans = 0, upper_body_plans_failed = 0;
+  int upper_body_walks = 0, upper_body_walks_completed = 0;  ///< Walks that were not stopped by the upper body.
+  int upper_body_collisions = 0;  ///< Committed frames whose volumes touch a box (must be 0).
+  double upper_body_checks_per_plan = 0.0;
+  float max_waist_flexion_rad = 0.0f;  ///< Deepest bend seen (the doorway needs about 1.1).
   std::string error;        ///< Non-empty when the scene did not load.
 };
 
@@ -49,5 +63,12 @@ TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options);
 
 /// One line: {"footstep_plan_us_p50":...,"success_rate":...,"collisions":0,...} (no newline).
 std::string to_json(const TerrainBenchResult& result);
+
+struct TerrainBenchCommand {
+  TerrainBenchOptions options;
+  bool json = false;
+};
+/// foresight-bench terrain: prints the machine, the figures and, with json, the JSON line.
+int bench_terrain(const TerrainBenchCommand& command);
 
 }  // namespace foresight::bench

@@ -1,5 +1,7 @@
 #include "terrain/ground_profile.hpp"
 
+#include "math/splitmix64.hpp"
+
 #include "world/terrain.hpp"
 
 #include <algorithm>
@@ -34,19 +36,6 @@ float scene_ground_at(const Scene& scene, vec2 p, float leg_obstacle_max_bottom_
   return has_ground ? h : kNaN;
 }
 
-// splitmix64: tiny, seedable, identical on every platform (std distributions are not).
-struct Rng {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float uniform(float lo, float hi) {
-    return lo + (hi - lo) * static_cast<float>(next() >> 40) * (1.0f / 16777216.0f);
-  }
-};
 
 }  // namespace
 
@@ -139,7 +128,7 @@ void ground_profile_ramp(GroundProfile& profile, float from_m, float to_m, float
 void ground_profile_random(GroundProfile& out, std::uint64_t seed, float length_m,
                            float spacing_m) {
   ground_profile_flat(out, length_m, 0.0f, spacing_m);
-  Rng rng{seed * 0x2545F4914F6CDD1Dull + 1};
+  SplitMix64 rng{seed * 0x2545F4914F6CDD1Dull + 1};
   float h = 0.0f;
   // The first 1.5 m stay flat: the walker starts there.
   float s = 1.5f;

@@ -1,21 +1,13 @@
 #include "terrain/upper_body_planner.hpp"
 
+#include "math/splitmix64.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace foresight::terrain {
 
 namespace {
-
-std::uint64_t splitmix64(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-float uniform(std::uint64_t& state) {  // [-1, 1)
-  return static_cast<float>(splitmix64(state) >> 40) * (2.0f / 16777216.0f) - 1.0f;
-}
 
 // The common variants each part's roadmap starts with, as offsets from its pattern (paper 5.2:
 // "initialized with some common motion patterns for that portion of the body").
@@ -59,7 +51,7 @@ class PartSearch {
   UpperBodyPartStats run(const PartConfig& start, std::span<UpperBodyConfig> out) {
     UpperBodyPartStats stats;
     ++planner_.stamp;
-    planner_.rng = cfg_.seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(part_) + 1;
+    planner_.rng.state = cfg_.seed * 0x2545F4914F6CDD1Dull + static_cast<std::uint64_t>(part_) + 1;
     seed_roadmap();
     const int last = static_cast<int>(track_.size()) - 1;
     PartConfig q0 = clamp_to_limits(body_, part_, start);
@@ -128,15 +120,15 @@ class PartSearch {
       }
       next_blocked_[static_cast<size_t>(t)] = next;
     }
-    promising_frame_ = -1;
+    promising_tb_.fill(-1);
   }
 
   /// Which roadmap entries are clear through the blocked run starting at frame tb (sampled every
-  /// few frames), cached for the last tb and roadmap size.
+  /// few frames). Each entry is evaluated once per tb: grown entries join as they come.
   void update_promising(int tb, UpperBodyPartStats& stats) {
-    if (promising_frame_ == tb && promising_size_ == planner_.roadmap_size) return;
     const int end = blocked_run_end_[static_cast<size_t>(tb)];
     for (int i = 0; i < planner_.roadmap_size; ++i) {
+      if (promising_tb_[static_cast<size_t>(i)] == tb) continue;
       bool ok = true;
       for (int f = tb; ok && f <= end; f = (f == end ? end + 1 : std::min(f + 3, end))) {
         const PartConfig goal = pattern(f);
@@ -146,9 +138,8 @@ class PartSearch {
         ok = clear(clamp_to_limits(body_, part_, target), f);
       }
       promising_[static_cast<size_t>(i)] = ok;
+      promising_tb_[static_cast<size_t>(i)] = tb;
     }
-    promising_frame_ = tb;
-    promising_size_ = planner_.roadmap_size;
   }
 
   void seed_roadmap() {
@@ -181,8 +172,8 @@ class PartSearch {
   bool mark_visited(const PartConfig& q, int t) {
     const std::uint64_t k = key(q, t);
     const size_t mask = planner_.visited_key.size() - 1;
-    std::uint64_t h = k;
-    for (size_t i = splitmix64(h) & mask;; i = (i + 1) & mask) {
+    SplitMix64 h{k};
+    for (size_t i = h.next() & mask;; i = (i + 1) & mask) {
       if (planner_.visited_stamp[i] != planner_.stamp) {
         planner_.visited_stamp[i] = planner_.stamp;
         planner_.visited_key[i] = k;
@@ -254,7 +245,7 @@ class PartSearch {
       PartConfig dir{};
       float len = 0.0f;
       for (int d = 0; d < dof_; ++d) {
-        dir[d] = uniform(planner_.rng);
+        dir[d] = planner_.rng.uniform(-1.0f, 1.0f);
         len += dir[d] * dir[d];
       }
       len = std::sqrt(len);
@@ -273,6 +264,7 @@ class PartSearch {
                            ? planner_.roadmap_size++
                            : kFirstGrown + stats.grown % (kMaxRoadmapNodes - kFirstGrown);
       planner_.roadmap[static_cast<size_t>(slot)] = offset;
+      promising_tb_[static_cast<size_t>(slot)] = -1;
       const PartConfig c = clamp_to_limits(body_, part_, steer(node.q, grown, step_, dof_));
       if (!mark_visited(c, t)) continue;
       ++stats.checks;
@@ -295,7 +287,7 @@ class PartSearch {
   float step_;
   std::array<int, kMaxUpperBodyFrames> next_blocked_{}, blocked_run_end_{};
   std::array<bool, kMaxRoadmapNodes> promising_{};
-  int promising_frame_ = -1, promising_size_ = 0;
+  std::array<int, kMaxRoadmapNodes> promising_tb_{};  ///< The tb each entry was evaluated for.
 };
 
 static_assert(std::size(kWaistVariants) == std::size(kArmVariants), "grown nodes replace from the same slot");

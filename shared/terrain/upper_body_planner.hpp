@@ -16,6 +16,7 @@
 // Deterministic for the same inputs and config; after upper_body_planner_init nothing allocates.
 #include "terrain/footstep_planner.hpp"
 #include "terrain/upper_body.hpp"
+#include "math/splitmix64.hpp"
 
 #include <array>
 #include <cstdint>
@@ -29,7 +30,7 @@ inline constexpr int kMaxRoadmapNodes = 40;      ///< Per part: initial variants
 
 struct UpperBodyPlannerConfig {
   UpperBodyParams body;
-  int max_checks_per_part = 20000;  ///< Collision checks a part may spend. [> 0]
+  int max_checks_per_part = 12000;  ///< Collision checks a part may spend. [> 0]
   int grow_tries = 3;               ///< New roadmap nodes grown at a stuck node before backtracking.
   float grow_distance_rad = 0.4f;   ///< r: how far from the current node a new node is grown.
   float visit_cell_rad = 0.04f;     ///< Configurations closer than this at a frame count as the same.
@@ -80,7 +81,7 @@ struct UpperBodyPlanner {
   std::array<Node, kMaxUpperBodyFrames> stack{};
   std::array<PartConfig, kMaxRoadmapNodes> roadmap{};  ///< Offsets from the pattern.
   int roadmap_size = 0;
-  std::uint64_t rng = 0;
+  SplitMix64 rng;
 };
 
 /// Validates the config and sizes the workspace. False (planner.valid false) on a bad config.
