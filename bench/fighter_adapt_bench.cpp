@@ -1,8 +1,7 @@
 #include "fighter_adapt_bench.hpp"
 
-#include "anim/author/default_library.hpp"
-#include "fighter/morphology.hpp"
-#include "fighter/strike_adaptation.hpp"
+#include "fighter_cast.hpp"
+#include "lab/lab_experiments.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,12 +12,6 @@
 namespace foresight::bench {
 namespace {
 
-double percentile(std::vector<double>& v, double q) {
-  if (v.empty()) return 0.0;
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 bool finite_pose(const PoseBuffers& p) {
   for (const vec3& x : p.global_pos_m)
@@ -40,19 +33,21 @@ vec3 forward_direction(std::mt19937_64& rng) {
 
 FighterAdaptBenchResult run_fighter_adapt_bench(const FighterAdaptBenchOptions& options) {
   using Clock = std::chrono::steady_clock;
-  const author::DefaultLibrarySpec lib = author::build_default_library();
-  const Morphology source = default_morphology();
-  LimbModel source_model;
+  const FighterCast cast;
+  FighterAdaptBenchResult r;
+  if (!cast.error.empty()) {
+    r.error = cast.error;
+    return r;
+  }
+  const author::DefaultLibrarySpec& lib = cast.library;
+  const LimbModel& source_model = cast.source_model;
+  const std::vector<Morphology>& morphs = cast.morphs;
+  const std::vector<LimbModel>& models = cast.models;
   std::string error;
-  limb_model_for_morphology(source, source_model, error);
-  const std::vector<Morphology> morphs = default_morphologies();
-  std::vector<LimbModel> models(morphs.size());
-  for (size_t i = 0; i < morphs.size(); ++i) limb_model_for_morphology(morphs[i], models[i], error);
 
   std::mt19937_64 rng(options.seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::vector<double> frame_us, limb_us, torso_us, reach_cm, torso_cm, skate;
-  FighterAdaptBenchResult r;
   StrikeAdapter adapter;
   int draw = 0;
   for (const author::AuthoredClip& c : lib.clips) {
@@ -118,14 +113,14 @@ FighterAdaptBenchResult run_fighter_adapt_bench(const FighterAdaptBenchOptions& 
       }
     }
   }
-  r.adapt_us_per_frame_p50 = percentile(frame_us, 0.5);
-  r.adapt_us_per_frame_p99 = percentile(frame_us, 0.99);
-  r.limb_us_per_frame_p50 = percentile(limb_us, 0.5);
-  r.torso_us_per_frame_p50 = percentile(torso_us, 0.5);
-  r.torso_us_per_frame_p99 = percentile(torso_us, 0.99);
-  r.reach_error_cm_p50 = percentile(reach_cm, 0.5);
-  r.reach_error_cm_p99 = percentile(reach_cm, 0.99);
-  r.reach_error_torso_cm_p99 = percentile(torso_cm, 0.99);
+  r.adapt_us_per_frame_p50 = lab::percentile(frame_us, 50.0);
+  r.adapt_us_per_frame_p99 = lab::percentile(frame_us, 99.0);
+  r.limb_us_per_frame_p50 = lab::percentile(limb_us, 50.0);
+  r.torso_us_per_frame_p50 = lab::percentile(torso_us, 50.0);
+  r.torso_us_per_frame_p99 = lab::percentile(torso_us, 99.0);
+  r.reach_error_cm_p50 = lab::percentile(reach_cm, 50.0);
+  r.reach_error_cm_p99 = lab::percentile(reach_cm, 99.0);
+  r.reach_error_torso_cm_p99 = lab::percentile(torso_cm, 99.0);
   double sum = 0.0;
   for (double s : skate) sum += s;
   r.foot_skate_cm_per_s = skate.empty() ? 0.0 : sum / static_cast<double>(skate.size());

@@ -11,6 +11,7 @@
 // Foot skate: the support foot's contact joint (ball of the foot; kicks: the standing leg,
 // punches: the rear foot) path length over the strike divided by its duration, averaged.
 #include <cstdint>
+#include <string>
 
 namespace foresight::bench {
 
@@ -20,6 +21,7 @@ struct FighterAdaptBenchOptions {
 };
 
 struct FighterAdaptBenchResult {
+  std::string error;  ///< Non-empty when the fighters' limb models could not be built.
   double adapt_us_per_frame_p50 = 0.0, adapt_us_per_frame_p99 = 0.0;  ///< Every frame, all classes.
   double limb_us_per_frame_p50 = 0.0;     ///< Frames the limb alone solved.
   double torso_us_per_frame_p50 = 0.0, torso_us_per_frame_p99 = 0.0;  ///< Frames that ran CCD.

@@ -24,8 +24,13 @@ int bench_fighter(const FighterBenchOptions& o) {
       f.side_view = side;
       const std::filesystem::path path =
           std::filesystem::path(o.figure_dir) / (side ? "fighter-adaptation-side.svg" : "fighter-adaptation-front.svg");
+      const std::string svg = fighter_adaptation_svg(f);
+      if (svg.empty()) {
+        std::fprintf(stderr, "foresight-bench fighter: cannot build the fighters' limb models\n");
+        return 1;
+      }
       std::ofstream out(path, std::ios::binary);
-      out << fighter_adaptation_svg(f);
+      out << svg;
       if (!out) {
         std::fprintf(stderr, "foresight-bench fighter: cannot write %s\n", path.string().c_str());
         return 1;
@@ -52,6 +57,10 @@ int bench_fighter(const FighterBenchOptions& o) {
   FighterAdaptBenchOptions ac;
   ac.seed = o.seed;
   const FighterAdaptBenchResult a = run_fighter_adapt_bench(ac);
+  if (!a.error.empty()) {
+    std::fprintf(stderr, "foresight-bench fighter: %s\n", a.error.c_str());
+    return 1;
+  }
   std::printf("adaptation: %d strikes, %d frames (%d limb / %d torso / %d far targets)\n", a.strikes, a.frames,
               a.limb_targets, a.torso_targets, a.far_targets);
   std::printf("  us per frame p50 %.1f p99 %.1f (limb alone p50 %.1f; with the torso p50 %.1f p99 %.1f)\n",

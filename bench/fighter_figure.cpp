@@ -1,8 +1,6 @@
 #include "fighter_figure.hpp"
 
-#include "anim/author/default_library.hpp"
-#include "fighter/morphology.hpp"
-#include "fighter/strike_adaptation.hpp"
+#include "fighter_cast.hpp"
 
 #include <cstdio>
 #include <sstream>
@@ -38,14 +36,13 @@ void stick(std::ostringstream& svg, const View& v, const Skeleton& s, const std:
 }  // namespace
 
 std::string fighter_adaptation_svg(const FighterFigureOptions& o) {
-  const author::DefaultLibrarySpec lib = author::build_default_library();
-  const Morphology source = default_morphology();
-  LimbModel source_model;
+  const FighterCast cast;
+  if (!cast.error.empty()) return {};
+  const author::DefaultLibrarySpec& lib = cast.library;
+  const LimbModel& source_model = cast.source_model;
+  const std::vector<Morphology>& morphs = cast.morphs;
+  const std::vector<LimbModel>& models = cast.models;
   std::string error;
-  limb_model_for_morphology(source, source_model, error);
-  const std::vector<Morphology> morphs = default_morphologies();
-  std::vector<LimbModel> models(morphs.size());
-  for (size_t i = 0; i < morphs.size(); ++i) limb_model_for_morphology(morphs[i], models[i], error);
 
   const float ppm = o.pixels_per_m;
   const float panel_px = kPanelM * ppm, row_px = (kPanelTopM + kFloorGapM) * ppm + 24.0f;

@@ -22,7 +22,8 @@ struct FighterFigureOptions {
   float pixels_per_m = 110.0f;
 };
 
-/// The SVG document (deterministic). Unknown clip names get a row saying so.
+/// The SVG document (deterministic). Unknown clip names get a row saying so. Empty when the
+/// fighters' limb models cannot be built.
 std::string fighter_adaptation_svg(const FighterFigureOptions& options);
 
 }  // namespace foresight::bench

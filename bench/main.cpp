@@ -82,6 +82,8 @@ int main(int argc, char** argv) {
   te->add_option("--window", terrain.options.window_steps, "Footstep window n")->check(CLI::Range(1, 4));
   te->add_option("--intervals", terrain.options.intervals, "Step length intervals m")->check(CLI::Range(1, 16));
   te->add_option("--seed", terrain.options.seed, "Seed of paths and profiles");
+  te->add_option("--upper-budget", terrain.options.upper_body_budget, "Upper-body collision checks per part")
+      ->check(CLI::Range(1, 10000000));
   te->add_flag("--json", terrain.json, "Print one JSON object as the last line");
 
   LoadReportOptions load;

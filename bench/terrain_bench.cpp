@@ -2,6 +2,7 @@
 
 #include "math/splitmix64.hpp"
 
+#include "lab/lab_experiments.hpp"
 #include "machine_info.hpp"
 #include "terrain/terrain_walker.hpp"
 #include "world/data_paths.hpp"
@@ -20,12 +21,6 @@ namespace {
 using namespace foresight::terrain;
 using Clock = std::chrono::steady_clock;
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 
 float ground_at(const GroundProfile& profile, float x) {
@@ -101,8 +96,11 @@ void run_upper_body_walks(const Scene& scene, const TerrainBenchOptions& options
   TerrainWalkerConfig config;
   config.footsteps.window_steps = options.window_steps;
   config.footsteps.intervals = options.intervals;
-  if (!terrain_walker_init(*walker, config)) return;
-  auto timing = std::make_unique<UpperBodyPlan>();
+  config.upper_body.max_checks_per_part = options.upper_body_budget;
+  if (!terrain_walker_init(*walker, config)) {
+    r.error = "invalid upper-body planner config (budget out of range)";
+    return;
+  }
   SplitMix64 rng{options.seed ^ 0x5eedull};
   std::vector<double> us;
   double checks = 0.0;
@@ -126,40 +124,30 @@ void run_upper_body_walks(const Scene& scene, const TerrainBenchOptions& options
     ++r.upper_body_walks;
     bool stopped = false;
     for (int guard = 0; guard < 40 && terrain_walker_travelled_m(*walker) < walk_m; ++guard) {
-      const UpperBodyConfig before = walker->upper;
-      const bool fresh = walker->fresh;
-      const TerrainStepStatus status = terrain_walker_step(*walker, scene);
-      if (status == TerrainStepStatus::kFootstepsFailed) break;  // a wall for the legs: not the upper body's
-      const std::span<const PelvisFrame> track(walker->track.data(), static_cast<size_t>(walker->track_frames));
-      const UpperBodyConfig start = fresh ? upper_body_pattern_config(body, track[0]) : before;
+      // A wall for the legs ends the walk: not the upper body's failure.
+      if (terrain_walker_plan_footsteps(*walker, scene) != TerrainStepStatus::kOk) break;
       const auto t0 = Clock::now();
-      upper_body_plan(walker->upper_body, track, config.dt_s, walker->obstacles, start, *timing);
+      const TerrainStepStatus status = terrain_walker_plan_upper_body(*walker);
       us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
       ++r.upper_body_plans;
-      for (const UpperBodyPartStats& p : timing->parts) checks += p.checks;
+      for (const UpperBodyPartStats& p : walker->upper_plan.parts) checks += p.checks;
       if (status != TerrainStepStatus::kOk) {
         ++r.upper_body_plans_failed;
         stopped = true;
         break;
       }
+      const std::span<const PelvisFrame> track = terrain_walker_track(*walker);
       for (int t = 0; t <= walker->step_frames; ++t) {
         const UpperBodyConfig& c = walker->upper_plan.frames[static_cast<size_t>(t)];
-        const PelvisFrame& f = walker->track[static_cast<size_t>(t)];
         r.max_waist_flexion_rad = std::max(r.max_waist_flexion_rad, c.waist[0]);
-        BodySpheres s;
-        waist_spheres(body, f, c.waist, s);
-        bool clear = spheres_clear(s, walker->obstacles);
-        for (BodyPart arm : {BodyPart::kLeftArm, BodyPart::kRightArm}) {
-          arm_spheres(body, f, c.waist, arm, c.part(arm), s);
-          clear = clear && spheres_clear(s, walker->obstacles);
-        }
-        r.upper_body_collisions += clear ? 0 : 1;
+        r.upper_body_collisions += upper_body_clear(body, track[static_cast<size_t>(t)], c, walker->obstacles) ? 0 : 1;
       }
+      terrain_walker_commit(*walker);
     }
     r.upper_body_walks_completed += stopped ? 0 : 1;
   }
-  r.upper_body_plan_us_p50 = percentile(us, 0.5);
-  r.upper_body_plan_us_p99 = percentile(us, 0.99);
+  r.upper_body_plan_us_p50 = lab::percentile(us, 50.0);
+  r.upper_body_plan_us_p99 = lab::percentile(us, 99.0);
   r.upper_body_plan_us_max = us.empty() ? 0.0 : *std::max_element(us.begin(), us.end());
   r.upper_body_checks_per_plan = r.upper_body_plans > 0 ? checks / r.upper_body_plans : 0.0;
   r.collisions += r.upper_body_collisions;
@@ -217,12 +205,12 @@ TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options) {
 
   all_us = scene_us;
   all_us.insert(all_us.end(), synthetic_us.begin(), synthetic_us.end());
-  r.footstep_plan_us_p50 = percentile(all_us, 0.5);
-  r.footstep_plan_us_p99 = percentile(all_us, 0.99);
+  r.footstep_plan_us_p50 = lab::percentile(all_us, 50.0);
+  r.footstep_plan_us_p99 = lab::percentile(all_us, 99.0);
   r.footstep_plan_us_max = all_us.empty() ? 0.0 : *std::max_element(all_us.begin(), all_us.end());
-  r.scene_plan_us_p50 = percentile(scene_us, 0.5);
-  r.synthetic_plan_us_p50 = percentile(synthetic_us, 0.5);
-  r.profile_cut_us_p50 = percentile(cut_us, 0.5);
+  r.scene_plan_us_p50 = lab::percentile(scene_us, 50.0);
+  r.synthetic_plan_us_p50 = lab::percentile(synthetic_us, 50.0);
+  r.profile_cut_us_p50 = lab::percentile(cut_us, 50.0);
   r.success_rate = r.paths > 0 ? static_cast<double>(r.paths_completed) / r.paths : 0.0;
   r.configs_per_plan = r.plans > 0 ? walker.configs / r.plans : 0.0;
   r.step_checks_per_plan = r.plans > 0 ? walker.checks / r.plans : 0.0;

@@ -14,8 +14,9 @@
 // whose upper-body volumes touch a box.
 //
 // The upper body: whole-actor walks (terrain::TerrainWalker) through the low doorway, along the
-// shelf and on random scene paths; each upper_body_plan call is timed alone (re-run on the same
-// window, which gives the same plan: it is deterministic).
+// shelf and on random scene paths; each walker step's upper-body stage is timed alone.
+#include "terrain/upper_body_planner.hpp"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -30,6 +31,7 @@ struct TerrainBenchOptions {
   int window_steps = 3;           ///< n.
   int intervals = 13;             ///< m.
   int upper_body_walks = 48;      ///< Walks of the whole actor (footsteps + upper body).
+  int upper_body_budget = terrain::UpperBodyPlannerConfig{}.max_checks_per_part;  ///< Checks per part.
   std::uint64_t seed = 1;
 };
 

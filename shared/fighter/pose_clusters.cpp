@@ -1,5 +1,7 @@
 #include "fighter/pose_clusters.hpp"
 
+#include "io/text_file.hpp"
+
 #include <xxhash.h>
 
 #include <algorithm>
@@ -249,22 +251,9 @@ bool read_file(const std::filesystem::path& path, std::string& out) {
 bool write_file(const std::filesystem::path& path, const std::string& bytes, std::string& warning) {
   std::error_code ec;
   std::filesystem::create_directories(path.parent_path(), ec);
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!f.flush()) {
-      warning = tmp.string() + ": cannot write the cluster cache";
-      return false;
-    }
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    warning = path.string() + ": cannot write the cluster cache: " + ec.message();
-    return false;
-  }
-  return true;
+  if (file_write_atomic(path, bytes, warning)) return true;
+  warning = "cannot write the cluster cache: " + warning;
+  return false;
 }
 
 }  // namespace

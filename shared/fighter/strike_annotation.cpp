@@ -4,8 +4,6 @@
 #include "io/text_file.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <system_error>
 
 namespace foresight {
 namespace {
@@ -256,29 +254,7 @@ std::string strike_sidecar_write(const StrikeSidecar& sidecar) {
 }
 
 bool strike_sidecar_save(const std::filesystem::path& path, const StrikeSidecar& sidecar, std::string& error) {
-  const std::string text = strike_sidecar_write(sidecar);
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) {
-      error = tmp.string() + ": cannot open for writing";
-      return false;
-    }
-    f.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!f.flush()) {
-      error = tmp.string() + ": write error";
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    error = path.string() + ": cannot replace: " + ec.message();
-    std::filesystem::remove(tmp, ec);
-    return false;
-  }
-  return true;
+  return file_write_atomic(path, strike_sidecar_write(sidecar), error);
 }
 
 }  // namespace foresight

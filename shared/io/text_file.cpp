@@ -37,4 +37,28 @@ bool text_file_read(const std::filesystem::path& path, std::uintmax_t max_bytes,
   return false;
 }
 
+bool file_write_atomic(const std::filesystem::path& path, std::string_view bytes, std::string& error) {
+  try {
+    std::filesystem::path tmp = path;
+    tmp += ".tmp";
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) return error = tmp.string() + ": cannot open for writing", false;
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+      if (!out.flush()) return error = tmp.string() + ": write error", false;
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+      error = path.string() + ": cannot replace: " + ec.message();
+      std::filesystem::remove(tmp, ec);
+      return false;
+    }
+    return true;
+  } catch (const std::exception& e) {  // path conversions and stream set-up may throw
+    error = path.string() + ": " + e.what();
+    return false;
+  }
+}
+
 }  // namespace foresight

@@ -1,9 +1,11 @@
 #pragma once
-// Reading a whole text file at the trust boundary: size-capped before anything is allocated,
-// never throws, and every failure names the path.
+// Whole files at the trust boundary: reading is size-capped before anything is allocated,
+// writing goes to "<path>.tmp" then renames (a reader never sees half a file); neither throws,
+// and every failure names the path.
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace foresight {
 
@@ -11,5 +13,9 @@ namespace foresight {
 /// bytes, more than the M allowed" / "cannot open for reading" / "read error" otherwise.
 bool text_file_read(const std::filesystem::path& path, std::uintmax_t max_bytes, std::string& text,
                     std::string& error);
+
+/// Writes `bytes` to `path` through "<path>.tmp" and a rename. False with "<tmp>: cannot open for
+/// writing" / "<tmp>: write error" / "<path>: cannot replace: ..." (the tmp file removed).
+bool file_write_atomic(const std::filesystem::path& path, std::string_view bytes, std::string& error);
 
 }  // namespace foresight

@@ -12,8 +12,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <fstream>
-#include <system_error>
 
 namespace foresight {
 namespace {
@@ -333,37 +331,14 @@ std::string recording_write(const Recording& rec) {
 }
 
 bool recording_save(const std::filesystem::path& path, const Recording& recording, std::string& error) {
+  std::string text;
   try {
-    const std::string text = recording_write(recording);
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) {
-        error = tmp.string() + ": cannot open for writing";
-        return false;
-      }
-      out.write(text.data(), static_cast<std::streamsize>(text.size()));
-      out.flush();
-      if (!out) {
-        error = tmp.string() + ": write error";
-        return false;
-      }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-      error = path.string() + ": cannot replace: " + ec.message();
-      std::filesystem::remove(tmp, ec);
-      return false;
-    }
-    return true;
+    text = recording_write(recording);
   } catch (const std::exception& e) {
     error = path.string() + ": " + e.what();
-  } catch (...) {
-    error = path.string() + ": unknown error while saving the recording";
+    return false;
   }
-  return false;
+  return file_write_atomic(path, text, error);
 }
 
 ControlInput recording_input_at(const Recording& recording, double t_s) {

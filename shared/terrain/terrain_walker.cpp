@@ -31,24 +31,38 @@ bool terrain_walker_start(TerrainWalker& walker, const Scene& scene, const Groun
   return true;
 }
 
-TerrainStepStatus terrain_walker_step(TerrainWalker& walker, const Scene& scene) {
+TerrainStepStatus terrain_walker_plan_footsteps(TerrainWalker& walker, const Scene& scene) {
   if (!walker.started) return TerrainStepStatus::kNotStarted;
   const TerrainWalkerConfig& c = walker.config;
   if (footstep_plan(walker.footsteps, walker.profile, walker.window, walker.plan) != FootstepStatus::kOk)
     return TerrainStepStatus::kFootstepsFailed;
   walker.track_frames = pelvis_track_from_plan(walker.plan, c.footsteps.walk, walker.profile.path, c.speed_mps,
                                                c.dt_s, walker.swing_left, walker.track, walker.step_frames);
-  const std::span<const PelvisFrame> track(walker.track.data(), static_cast<size_t>(walker.track_frames));
-  if (walker.fresh) walker.upper = upper_body_pattern_config(c.upper_body.body, track[0]);
-  gather_upper_body_obstacles(scene, track, c.obstacle_reach_m, c.upper_obstacle_min_top_m, walker.obstacles);
-  if (upper_body_plan(walker.upper_body, track, c.dt_s, walker.obstacles, walker.upper, walker.upper_plan) !=
-      UpperBodyStatus::kOk)
-    return TerrainStepStatus::kUpperBodyFailed;
+  gather_upper_body_obstacles(scene, terrain_walker_track(walker), c.obstacle_reach_m, c.upper_obstacle_min_top_m,
+                              walker.obstacles);
+  if (walker.fresh) walker.upper = upper_body_pattern_config(c.upper_body.body, walker.track[0]);
+  return TerrainStepStatus::kOk;
+}
+
+TerrainStepStatus terrain_walker_plan_upper_body(TerrainWalker& walker) {
+  return upper_body_plan(walker.upper_body, terrain_walker_track(walker), walker.config.dt_s, walker.obstacles,
+                         walker.upper, walker.upper_plan) == UpperBodyStatus::kOk
+             ? TerrainStepStatus::kOk
+             : TerrainStepStatus::kUpperBodyFailed;
+}
+
+void terrain_walker_commit(TerrainWalker& walker) {
   footstep_window_slide(walker.footsteps, walker.plan, walker.window);
   walker.upper = walker.upper_plan.frames[static_cast<size_t>(walker.step_frames)];
   walker.swing_left = !walker.swing_left;
   walker.fresh = false;
-  return TerrainStepStatus::kOk;
+}
+
+TerrainStepStatus terrain_walker_step(TerrainWalker& walker, const Scene& scene) {
+  TerrainStepStatus status = terrain_walker_plan_footsteps(walker, scene);
+  if (status == TerrainStepStatus::kOk) status = terrain_walker_plan_upper_body(walker);
+  if (status == TerrainStepStatus::kOk) terrain_walker_commit(walker);
+  return status;
 }
 
 }  // namespace foresight::terrain

@@ -47,8 +47,20 @@ bool terrain_walker_init(TerrainWalker& walker, const TerrainWalkerConfig& confi
 /// when the cut is empty.
 bool terrain_walker_start(TerrainWalker& walker, const Scene& scene, const GroundPath& path, float length_m,
                           float start_x_m = 0.3f);
-/// Plans and commits one step. kOk: the window slid, `upper` is the step's last frame.
+/// Plans and commits one step: plan_footsteps, plan_upper_body, commit. kOk: the window slid,
+/// `upper` is the step's last frame; otherwise nothing moved.
 TerrainStepStatus terrain_walker_step(TerrainWalker& walker, const Scene& scene);
+// The stages of terrain_walker_step, for callers that time them apart (the benchmark).
+/// The footstep window, its pelvis track and the boxes near it; kOk or kFootstepsFailed.
+TerrainStepStatus terrain_walker_plan_footsteps(TerrainWalker& walker, const Scene& scene);
+/// The upper body along the track from `upper`; kOk or kUpperBodyFailed.
+TerrainStepStatus terrain_walker_plan_upper_body(TerrainWalker& walker);
+/// Commits the planned first step (both plans kOk).
+void terrain_walker_commit(TerrainWalker& walker);
+/// The last planned window's pelvis track.
+inline std::span<const PelvisFrame> terrain_walker_track(const TerrainWalker& walker) {
+  return {walker.track.data(), static_cast<size_t>(walker.track_frames)};
+}
 /// The stance ankle's distance along the path.
 inline float terrain_walker_travelled_m(const TerrainWalker& walker) { return walker.window.stance_x_m; }
 

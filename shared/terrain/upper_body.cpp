@@ -30,9 +30,15 @@ WaistFrame waist_frame(const UpperBodyParams& p, const PelvisFrame& f, const Par
   return {f.pos_m + vec3(0, p.waist_above_pelvis_m, 0), rot_y(f.heading_rad) * rot_x(waist[0]) * rot_y(waist[1])};
 }
 
+/// Spheres at most one radius apart along a capsule's axis (upper_body_params_valid keeps the
+/// total within BodySpheres::kCapacity).
+int capsule_spheres(float length_m, float radius_m) {
+  return std::max(static_cast<int>(std::ceil(length_m / radius_m)) + 1, 2);
+}
+
 void add_capsule(BodySpheres& out, vec3 a, vec3 b, float radius) {
   const float len = glm::length(b - a);
-  const int n = std::clamp(static_cast<int>(std::ceil(len / radius)) + 1, 2, BodySpheres::kCapacity - out.count);
+  const int n = std::min(capsule_spheres(len, radius), BodySpheres::kCapacity - out.count);
   for (int i = 0; i < n; ++i) {
     const vec3 c = a + (b - a) * (static_cast<float>(i) / static_cast<float>(n - 1));
     out.spheres[static_cast<size_t>(out.count++)] = glm::vec4(c, radius);
@@ -48,6 +54,21 @@ const char* body_part_name(BodyPart part) {
     case BodyPart::kRightArm: return "right arm";
   }
   return "?";
+}
+
+bool upper_body_params_valid(const UpperBodyParams& p) {
+  const float radii[] = {p.torso_radius_m, p.head_radius_m, p.upper_arm_radius_m, p.forearm_radius_m};
+  const float lengths[] = {p.neck_above_waist_m, p.upper_arm_m, p.forearm_m, p.shoulder_half_width_m,
+                           p.head_centre_above_waist_m, p.shoulder_above_waist_m, p.waist_above_pelvis_m};
+  for (float r : radii)
+    if (!(r > 0.0f && r < 1.0f)) return false;
+  for (float l : lengths)
+    if (!(l >= 0.0f && l < 2.0f)) return false;
+  if (!(p.margin_m >= 0.0f && p.margin_m < 0.1f) || !std::isfinite(p.head_forward_m)) return false;
+  const int torso = capsule_spheres(p.neck_above_waist_m, p.torso_radius_m + p.margin_m) + 1;  // + the head
+  const int arm = capsule_spheres(p.upper_arm_m, p.upper_arm_radius_m + p.margin_m) +
+                  capsule_spheres(p.forearm_m, p.forearm_radius_m + p.margin_m);
+  return torso <= BodySpheres::kCapacity && arm <= BodySpheres::kCapacity;
 }
 
 PartConfig upper_body_pattern(const UpperBodyParams& p, BodyPart part, const PelvisFrame& f) {
@@ -133,6 +154,18 @@ bool spheres_clear(const BodySpheres& spheres, const UpperBodyObstacles& obstacl
       const vec3 d = glm::max(glm::max(lo - c, c - hi), vec3(0.0f));
       if (glm::dot(d, d) < s.w * s.w) return false;
     }
+  }
+  return true;
+}
+
+bool upper_body_clear(const UpperBodyParams& params, const PelvisFrame& frame, const UpperBodyConfig& config,
+                      const UpperBodyObstacles& obstacles) {
+  BodySpheres s;
+  waist_spheres(params, frame, config.waist, s);
+  if (!spheres_clear(s, obstacles)) return false;
+  for (BodyPart arm : {BodyPart::kLeftArm, BodyPart::kRightArm}) {
+    arm_spheres(params, frame, config.waist, arm, config.part(arm), s);
+    if (!spheres_clear(s, obstacles)) return false;
   }
   return true;
 }

@@ -80,6 +80,10 @@ struct PelvisFrame {
   float left_hip_rad = 0.0f, right_hip_rad = 0.0f;
 };
 
+/// Radii and lengths positive and finite, and few enough spheres for BodySpheres (radii not
+/// too small for the limbs' lengths).
+bool upper_body_params_valid(const UpperBodyParams& params);
+
 /// The pattern O_x(t) of a part at a frame: the waist erect, the arms swinging opposite the legs.
 PartConfig upper_body_pattern(const UpperBodyParams& params, BodyPart part, const PelvisFrame& frame);
 /// Clamps to the part's joint limits.
@@ -119,5 +123,9 @@ void gather_upper_body_obstacles(const Scene& scene, std::span<const PelvisFrame
                                  float min_top_m, UpperBodyObstacles& out);
 /// True when no sphere touches a box.
 bool spheres_clear(const BodySpheres& spheres, const UpperBodyObstacles& obstacles);
+/// True when no volume of the whole upper body (torso, head, both arms) touches a box: what a
+/// planned frame shows.
+bool upper_body_clear(const UpperBodyParams& params, const PelvisFrame& frame, const UpperBodyConfig& config,
+                      const UpperBodyObstacles& obstacles);
 
 }  // namespace foresight::terrain

@@ -145,7 +145,7 @@ class PartSearch {
   void seed_roadmap() {
     const std::span<const PartConfig> variants =
         part_ == BodyPart::kWaist ? std::span<const PartConfig>(kWaistVariants) : std::span<const PartConfig>(kArmVariants);
-    planner_.roadmap_size = static_cast<int>(variants.size());
+    planner_.roadmap_size = first_grown_ = static_cast<int>(variants.size());
     std::copy(variants.begin(), variants.end(), planner_.roadmap.begin());
   }
 
@@ -259,10 +259,9 @@ class PartSearch {
       const PartConfig goal = pattern(t);
       PartConfig offset{};
       for (int d = 0; d < dof_; ++d) offset[d] = grown[d] - goal[d];
-      constexpr int kFirstGrown = static_cast<int>(std::size(kWaistVariants));
       const int slot = planner_.roadmap_size < kMaxRoadmapNodes
                            ? planner_.roadmap_size++
-                           : kFirstGrown + stats.grown % (kMaxRoadmapNodes - kFirstGrown);
+                           : first_grown_ + stats.grown % (kMaxRoadmapNodes - first_grown_);
       planner_.roadmap[static_cast<size_t>(slot)] = offset;
       promising_tb_[static_cast<size_t>(slot)] = -1;
       const PartConfig c = clamp_to_limits(body_, part_, steer(node.q, grown, step_, dof_));
@@ -285,13 +284,14 @@ class PartSearch {
   const UpperBodyObstacles& obstacles_;
   std::span<const UpperBodyConfig> waist_;
   float step_;
+  int first_grown_ = 0;  ///< Roadmap slots before this hold the seeded variants.
   std::array<int, kMaxUpperBodyFrames> next_blocked_{}, blocked_run_end_{};
   std::array<bool, kMaxRoadmapNodes> promising_{};
   std::array<int, kMaxRoadmapNodes> promising_tb_{};  ///< The tb each entry was evaluated for.
 };
 
-static_assert(std::size(kWaistVariants) == std::size(kArmVariants), "grown nodes replace from the same slot");
-static_assert(std::size(kWaistVariants) < kMaxRoadmapNodes);
+static_assert(std::size(kWaistVariants) < kMaxRoadmapNodes && std::size(kArmVariants) < kMaxRoadmapNodes,
+              "room for grown nodes");
 
 }  // namespace
 
@@ -317,7 +317,7 @@ bool upper_body_planner_init(UpperBodyPlanner& planner, const UpperBodyPlannerCo
                   std::isfinite(config.grow_distance_rad) && std::isfinite(config.visit_cell_rad) &&
                   b.waist_speed_radps > 0.0f && b.arm_speed_radps > 0.0f && std::isfinite(b.waist_speed_radps) &&
                   std::isfinite(b.arm_speed_radps) && finite(b.waist_min) && finite(b.waist_max) &&
-                  finite(b.arm_min) && finite(b.arm_max);
+                  finite(b.arm_min) && finite(b.arm_max) && upper_body_params_valid(b);
   if (!ok) return false;
   // At most one visited entry per check: keep the table under half full.
   size_t size = 1024;

@@ -68,16 +68,7 @@ int colliding_frames(const WalkRecord& r, const Scene& scene, const UpperBodyPar
   UpperBodyObstacles obstacles;
   gather_upper_body_obstacles(scene, r.pelvis, 2.0f, 0.5f, obstacles);
   int bad = 0;
-  for (size_t t = 0; t < r.pelvis.size(); ++t) {
-    BodySpheres s;
-    waist_spheres(body, r.pelvis[t], r.upper[t].waist, s);
-    bool ok = spheres_clear(s, obstacles);
-    for (BodyPart arm : {BodyPart::kLeftArm, BodyPart::kRightArm}) {
-      arm_spheres(body, r.pelvis[t], r.upper[t].waist, arm, r.upper[t].part(arm), s);
-      ok = ok && spheres_clear(s, obstacles);
-    }
-    bad += ok ? 0 : 1;
-  }
+  for (size_t t = 0; t < r.pelvis.size(); ++t) bad += upper_body_clear(body, r.pelvis[t], r.upper[t], obstacles) ? 0 : 1;
   return bad;
 }
 
@@ -205,6 +196,10 @@ TEST(UpperBody, BadInputGetsAClearStatus) {
   UpperBodyPlannerConfig bad;
   bad.max_checks_per_part = 0;
   EXPECT_FALSE(upper_body_planner_init(planner, bad));
+  UpperBodyPlannerConfig thin;  // arms of 1 mm radius would need more spheres than a part holds
+  thin.body.upper_arm_radius_m = thin.body.forearm_radius_m = 0.001f;
+  thin.body.margin_m = 0.0f;
+  EXPECT_FALSE(upper_body_planner_init(planner, thin));
   auto plan = std::make_unique<UpperBodyPlan>();
   UpperBodyObstacles none;
   std::vector<PelvisFrame> track(10);
