@@ -112,8 +112,8 @@ void run_upper_body_walks(const Scene& scene, const TerrainBenchOptions& options
       case 0:  // through the low doorway (x 13.8..14.2, z 14.4..15.6, lintel at 1.4 m)
         path = {{rng.uniform(9.5f, 11.5f), 15.0f + rng.uniform(-0.2f, 0.2f)}, radians(90.0f + rng.uniform(-3.0f, 3.0f)), 0.0f};
         break;
-      case 1:  // along the shelf (x 15.5..19.7, z 19.1..19.7, 1.1..1.3 m) on the right hand
-        path = {{rng.uniform(14.8f, 15.4f), rng.uniform(18.7f, 18.9f)}, radians(90.0f), 0.0f};
+      case 1:  // along the shelf (x 15.5..19.7, z 19.1..19.7, 1.1..1.3 m) on the right hand, from before it
+        path = {{rng.uniform(14.4f, 15.0f), rng.uniform(18.7f, 18.9f)}, radians(90.0f), 0.0f};
         walk_m = 3.4f;
         break;
       default:  // anywhere, east +-25 degrees

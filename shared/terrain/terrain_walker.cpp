@@ -1,5 +1,7 @@
 #include "terrain/terrain_walker.hpp"
 
+#include <algorithm>
+
 namespace foresight::terrain {
 
 const char* terrain_step_status_name(TerrainStepStatus status) {
@@ -27,6 +29,7 @@ bool terrain_walker_start(TerrainWalker& walker, const Scene& scene, const Groun
   walker.window.rear_x_m = walker.window.stance_x_m = start_x_m;
   walker.swing_left = true;
   walker.fresh = true;
+  walker.guide_frames = 0;
   walker.started = true;
   return true;
 }
@@ -46,7 +49,9 @@ TerrainStepStatus terrain_walker_plan_footsteps(TerrainWalker& walker, const Sce
 
 TerrainStepStatus terrain_walker_plan_upper_body(TerrainWalker& walker) {
   return upper_body_plan(walker.upper_body, terrain_walker_track(walker), walker.config.dt_s, walker.obstacles,
-                         walker.upper, walker.upper_plan) == UpperBodyStatus::kOk
+                         walker.upper, walker.upper_plan,
+                         std::span<const UpperBodyConfig>(walker.guide.data(), static_cast<size_t>(walker.guide_frames))) ==
+                 UpperBodyStatus::kOk
              ? TerrainStepStatus::kOk
              : TerrainStepStatus::kUpperBodyFailed;
 }
@@ -54,6 +59,8 @@ TerrainStepStatus terrain_walker_plan_upper_body(TerrainWalker& walker) {
 void terrain_walker_commit(TerrainWalker& walker) {
   footstep_window_slide(walker.footsteps, walker.plan, walker.window);
   walker.upper = walker.upper_plan.frames[static_cast<size_t>(walker.step_frames)];
+  walker.guide_frames = walker.upper_plan.num_frames - walker.step_frames;
+  std::copy_n(walker.upper_plan.frames.begin() + walker.step_frames, walker.guide_frames, walker.guide.begin());
   walker.swing_left = !walker.swing_left;
   walker.fresh = false;
 }

@@ -37,6 +37,9 @@ struct TerrainWalker {
   UpperBodyPlan upper_plan;
   UpperBodyObstacles obstacles;
   std::array<PelvisFrame, kMaxUpperBodyFrames> track{};
+  /// The committed plan's frames after the committed step: the next plan's guide.
+  std::array<UpperBodyConfig, kMaxUpperBodyFrames> guide{};
+  int guide_frames = 0;
   int track_frames = 0;
   int step_frames = 0;
 };

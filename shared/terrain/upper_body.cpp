@@ -65,7 +65,7 @@ bool upper_body_params_valid(const UpperBodyParams& p) {
   for (float l : lengths)
     if (!(l >= 0.0f && l < 2.0f)) return false;
   if (!(p.margin_m >= 0.0f && p.margin_m < 0.1f) || !std::isfinite(p.head_forward_m)) return false;
-  const int torso = capsule_spheres(p.neck_above_waist_m, p.torso_radius_m + p.margin_m) + 1;  // + the head
+  const int torso = capsule_spheres(p.neck_above_waist_m, p.torso_radius_m + p.margin_m) + 3;  // + head, shoulders
   const int arm = capsule_spheres(p.upper_arm_m, p.upper_arm_radius_m + p.margin_m) +
                   capsule_spheres(p.forearm_m, p.forearm_radius_m + p.margin_m);
   return torso <= BodySpheres::kCapacity && arm <= BodySpheres::kCapacity;
@@ -93,6 +93,12 @@ void waist_spheres(const UpperBodyParams& p, const PelvisFrame& f, const PartCon
   add_capsule(out, w.pivot_m, w.pivot_m + w.rot * vec3(0, p.neck_above_waist_m, 0), p.torso_radius_m + p.margin_m);
   out.spheres[static_cast<size_t>(out.count++)] =
       glm::vec4(w.pivot_m + w.rot * vec3(0, p.head_centre_above_waist_m, p.head_forward_m), p.head_radius_m + p.margin_m);
+  // The shoulder joints ride on the torso: no arm motion moves them, so the waist keeps them clear
+  // (turning the chest away from a shelf beside it, as in the paper's Fig. 9b).
+  for (float side : {1.0f, -1.0f})
+    out.spheres[static_cast<size_t>(out.count++)] = glm::vec4(
+        w.pivot_m + w.rot * vec3(side * p.shoulder_half_width_m, p.shoulder_above_waist_m, 0),
+        p.upper_arm_radius_m + p.margin_m);
 }
 
 ArmPoints arm_points(const UpperBodyParams& p, const PelvisFrame& f, const PartConfig& waist, BodyPart arm,

@@ -12,8 +12,9 @@
 // twist turns it about its own axis (it matters when the elbow is bent), elbow flexion bends the
 // forearm forward. Geometry defaults are the default skeleton's (anim/author/default_skeleton.cpp).
 //
-// Volumes: a capsule for the torso, a sphere for the head, a capsule per upper arm and per
-// forearm (with the hand). A capsule is tested as spheres spaced at most one radius apart (the
+// Volumes: a capsule for the torso, spheres for the head and the shoulder joints (they move with
+// the torso, so the waist keeps them clear), a capsule per upper arm and per forearm (with the
+// hand). A capsule is tested as spheres spaced at most one radius apart (the
 // union covers the capsule but for scallops of 13 % of the radius between spheres, which the
 // margin more than pays for); each sphere against each nearby box by the exact point-box distance.
 #include "math/types.hpp"
@@ -95,7 +96,7 @@ struct BodySpheres {
   std::array<glm::vec4, kCapacity> spheres{};  ///< xyz centre, w radius.
   int count = 0;
 };
-/// The waist part's volumes (torso, head) for waist config `waist`.
+/// The waist part's volumes (torso, head, the two shoulder joints) for waist config `waist`.
 void waist_spheres(const UpperBodyParams& params, const PelvisFrame& frame, const PartConfig& waist,
                    BodySpheres& out);
 /// One arm's volumes (upper arm, forearm with hand), carried by the waist config.

@@ -9,6 +9,9 @@ namespace foresight::terrain {
 
 namespace {
 
+/// How far back from a blocked run the latest start of a manoeuvre is looked for (3 s at 30 Hz).
+constexpr int kMaxManoeuvreFrames = 90;
+
 // The common variants each part's roadmap starts with, as offsets from its pattern (paper 5.2:
 // "initialized with some common motion patterns for that portion of the body").
 constexpr PartConfig kWaistVariants[] = {
@@ -43,9 +46,10 @@ PartConfig steer(const PartConfig& from, const PartConfig& to, float step, int d
 class PartSearch {
  public:
   PartSearch(UpperBodyPlanner& planner, BodyPart part, std::span<const PelvisFrame> track, float dt_s,
-             const UpperBodyObstacles& obstacles, std::span<const UpperBodyConfig> waist)
+             const UpperBodyObstacles& obstacles, std::span<const UpperBodyConfig> waist,
+             std::span<const UpperBodyConfig> guide)
       : planner_(planner), cfg_(planner.config), body_(planner.config.body), part_(part),
-        dof_(part_dof(part)), track_(track), obstacles_(obstacles), waist_(waist),
+        dof_(part_dof(part)), track_(track), obstacles_(obstacles), waist_(waist), guide_(guide),
         step_((part == BodyPart::kWaist ? body_.waist_speed_radps : body_.arm_speed_radps) * dt_s) {}
 
   UpperBodyPartStats run(const PartConfig& start, std::span<UpperBodyConfig> out) {
@@ -120,26 +124,75 @@ class PartSearch {
       }
       next_blocked_[static_cast<size_t>(t)] = next;
     }
+    // Inside a run, the run's first frame: one run, one decision about leaving the pattern.
+    for (size_t t = 1; t < track_.size(); ++t)
+      if (next_blocked_[t] == static_cast<int>(t) && next_blocked_[t - 1] >= 0 &&
+          next_blocked_[t - 1] < static_cast<int>(t))  // both blocked (t - 1 already holds its run's start)
+        next_blocked_[t] = next_blocked_[t - 1];
     promising_tb_.fill(-1);
+    latest_tb_ = latest_entry_ = -1;
   }
 
   /// Which roadmap entries are clear through the blocked run starting at frame tb (sampled every
-  /// few frames). Each entry is evaluated once per tb: grown entries join as they come.
-  void update_promising(int tb, UpperBodyPartStats& stats) {
+  /// few frames; each entry evaluated once per tb, grown entries as they come), and for the
+  /// nearest of them to the pattern the latest frame at which leaving the pattern for it, at full
+  /// joint speed, still gets there clear (latest_start_). False when no entry is clear.
+  bool update_promising(int tb, UpperBodyPartStats& stats) {
     const int end = blocked_run_end_[static_cast<size_t>(tb)];
+    int best = -1;
+    float best_size = 0.0f;
     for (int i = 0; i < planner_.roadmap_size; ++i) {
-      if (promising_tb_[static_cast<size_t>(i)] == tb) continue;
-      bool ok = true;
-      for (int f = tb; ok && f <= end; f = (f == end ? end + 1 : std::min(f + 3, end))) {
-        const PartConfig goal = pattern(f);
-        PartConfig target{};
-        for (int d = 0; d < dof_; ++d) target[d] = goal[d] + planner_.roadmap[static_cast<size_t>(i)][d];
-        ++stats.checks;
-        ok = clear(clamp_to_limits(body_, part_, target), f);
+      const PartConfig& delta = planner_.roadmap[static_cast<size_t>(i)];
+      if (promising_tb_[static_cast<size_t>(i)] != tb) {
+        bool ok = true;
+        for (int f = tb; ok && f <= end; f = (f == end ? end + 1 : std::min(f + 3, end))) {
+          ++stats.checks;
+          ok = clear(offset_config(f, delta), f);
+        }
+        promising_[static_cast<size_t>(i)] = ok;
+        promising_tb_[static_cast<size_t>(i)] = tb;
       }
-      promising_[static_cast<size_t>(i)] = ok;
-      promising_tb_[static_cast<size_t>(i)] = tb;
+      const float size = distance(delta, PartConfig{}, dof_);
+      if (promising_[static_cast<size_t>(i)] && (best < 0 || size < best_size)) {
+        best = i;
+        best_size = size;
+      }
     }
+    if (best < 0) return false;
+    if (latest_tb_ != tb || latest_entry_ != best) {
+      latest_tb_ = tb;
+      latest_entry_ = best;
+      latest_start_ = 0;
+      // Search back from tb for the latest start whose straight manoeuvre is clear throughout
+      // (configurations on the way can be blocked before tb: a half-bent head meets a lintel's
+      // face before an erect one meets its underside). A run that goes on past the window may
+      // need more than this window shows (a deeper bend further on): leave the pattern now.
+      const bool truncated = end == static_cast<int>(track_.size()) - 1;
+      const PartConfig& delta = planner_.roadmap[static_cast<size_t>(best)];
+      for (int start = truncated ? -1 : tb - 1;
+           start >= std::max(0, tb - kMaxManoeuvreFrames) && stats.checks < cfg_.max_checks_per_part; --start) {
+        PartConfig q = pattern(start);
+        bool ok = true;
+        for (int f = start + 1; ok && f <= tb; ++f) {
+          q = clamp_to_limits(body_, part_, steer(q, offset_config(f, delta), step_, dof_));
+          ++stats.checks;
+          ok = clear(q, f);
+        }
+        if (ok) {
+          latest_start_ = start;
+          break;
+        }
+      }
+    }
+    return true;
+  }
+
+  /// The pattern at frame f moved by a roadmap offset, within the limits.
+  PartConfig offset_config(int f, const PartConfig& delta) const {
+    const PartConfig goal = pattern(f);
+    PartConfig target{};
+    for (int d = 0; d < dof_; ++d) target[d] = goal[d] + delta[d];
+    return clamp_to_limits(body_, part_, target);
   }
 
   void seed_roadmap() {
@@ -187,38 +240,28 @@ class PartSearch {
   bool try_successors(const PartConfig& q, int t, PartConfig& next, UpperBodyPartStats& stats) {
     const PartConfig goal = pattern(t);
     const int tb = next_blocked_[static_cast<size_t>(t)];
-    bool urgent = false;
-    if (tb >= 0) {
-      update_promising(tb, stats);
-      // The nearest clear configuration at tb: is it time to head for it?
-      const PartConfig goal_b = pattern(tb);
-      float best = 1e30f;
-      int frames_needed = 0;
-      for (int i = 0; i < planner_.roadmap_size; ++i) {
-        if (!promising_[static_cast<size_t>(i)]) continue;
-        const PartConfig& delta = planner_.roadmap[static_cast<size_t>(i)];
-        const float size = distance(delta, PartConfig{}, dof_);
-        if (size >= best) continue;
-        best = size;
-        float far = 0.0f;
-        for (int d = 0; d < dof_; ++d) far = std::max(far, std::abs(goal_b[d] + delta[d] - q[d]));
-        // Twice the time at full speed: configurations on the way may be blocked before tb
-        // (bending under a lintel, the half-bent head meets the lintel's face first).
-        frames_needed = 2 * static_cast<int>(std::ceil(far / step_)) + 4;
-      }
-      urgent = best < 1e30f && tb - t <= frames_needed;
-    }
-    std::array<PartConfig, kMaxRoadmapNodes> candidates;
-    std::array<float, kMaxRoadmapNodes> dist;
-    std::array<int, kMaxRoadmapNodes> order;
-    const int n = planner_.roadmap_size;
+    // Past the latest frame to leave the pattern for the run ahead: clear entries first.
+    const bool urgent = tb >= 0 && update_promising(tb, stats) && t >= latest_start_;
+    // The roadmap's entries, and the previous plan at this frame: tried first, unless it is time
+    // to leave the pattern (the previous window may not have seen the run ahead).
+    std::array<PartConfig, kMaxRoadmapNodes + 1> candidates;
+    std::array<float, kMaxRoadmapNodes + 1> dist;
+    std::array<int, kMaxRoadmapNodes + 1> order;
+    int n = planner_.roadmap_size;
     for (int i = 0; i < n; ++i) {
-      PartConfig target{};
+      PartConfig target{};  // the pattern (computed once above) moved by the entry's offset
       for (int d = 0; d < dof_; ++d) target[d] = goal[d] + planner_.roadmap[static_cast<size_t>(i)][d];
       candidates[static_cast<size_t>(i)] = clamp_to_limits(body_, part_, steer(q, target, step_, dof_));
       dist[static_cast<size_t>(i)] = distance(candidates[static_cast<size_t>(i)], goal, dof_) +
                                      (urgent && !promising_[static_cast<size_t>(i)] ? 1e6f : 0.0f);
       order[static_cast<size_t>(i)] = i;
+    }
+    if (t < static_cast<int>(guide_.size())) {
+      candidates[static_cast<size_t>(n)] =
+          clamp_to_limits(body_, part_, steer(q, guide_[static_cast<size_t>(t)].part(part_), step_, dof_));
+      dist[static_cast<size_t>(n)] = urgent ? 1e6f : -1.0f;
+      order[static_cast<size_t>(n)] = n;
+      ++n;
     }
     for (int i = 1; i < n; ++i)  // insertion sort: stable, few entries, and std::stable_sort allocates
       for (int j = i; j > 0 && dist[static_cast<size_t>(order[static_cast<size_t>(j)])] <
@@ -283,11 +326,13 @@ class PartSearch {
   std::span<const PelvisFrame> track_;
   const UpperBodyObstacles& obstacles_;
   std::span<const UpperBodyConfig> waist_;
+  std::span<const UpperBodyConfig> guide_;
   float step_;
   int first_grown_ = 0;  ///< Roadmap slots before this hold the seeded variants.
   std::array<int, kMaxUpperBodyFrames> next_blocked_{}, blocked_run_end_{};
   std::array<bool, kMaxRoadmapNodes> promising_{};
   std::array<int, kMaxRoadmapNodes> promising_tb_{};  ///< The tb each entry was evaluated for.
+  int latest_tb_ = -1, latest_entry_ = -1, latest_start_ = 0;
 };
 
 static_assert(std::size(kWaistVariants) < kMaxRoadmapNodes && std::size(kArmVariants) < kMaxRoadmapNodes,
@@ -339,7 +384,7 @@ UpperBodyConfig upper_body_pattern_config(const UpperBodyParams& params, const P
 
 UpperBodyStatus upper_body_plan(UpperBodyPlanner& planner, std::span<const PelvisFrame> track, float dt_s,
                                 const UpperBodyObstacles& obstacles, const UpperBodyConfig& start,
-                                UpperBodyPlan& plan) {
+                                UpperBodyPlan& plan, std::span<const UpperBodyConfig> guide) {
   plan.num_frames = 0;
   plan.failed_part = BodyPart::kWaist;
   plan.parts = {};
@@ -354,7 +399,7 @@ UpperBodyStatus upper_body_plan(UpperBodyPlanner& planner, std::span<const Pelvi
   if (obstacles.overflow) return fail(UpperBodyStatus::kTooManyObstacles);
   const std::span<UpperBodyConfig> frames(plan.frames.data(), track.size());
   for (BodyPart part : {BodyPart::kWaist, BodyPart::kLeftArm, BodyPart::kRightArm}) {
-    PartSearch search(planner, part, track, dt_s, obstacles, frames);
+    PartSearch search(planner, part, track, dt_s, obstacles, frames, guide.first(std::min(guide.size(), track.size())));
     UpperBodyPartStats& stats = plan.parts[static_cast<size_t>(part)];
     stats = search.run(start.part(part), frames);
     if (stats.status != UpperBodyStatus::kOk) {

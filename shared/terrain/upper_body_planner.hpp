@@ -13,6 +13,11 @@
 // tries its next successor. A (frame, configuration cell) visited once is never tried again, so the
 // search ends: at the last frame (kOk), out of successors (kNoPath), or out of budget (kBudget).
 //
+// Beyond the paper, two kinds of foresight (docs/TERRAIN.md): for each run of frames where the
+// pattern itself is blocked, the latest frame to leave the pattern for a roadmap configuration
+// that is clear through the run (from then on such successors come first); and the previous
+// window's plan as a guide, tried first where it still applies.
+//
 // Deterministic for the same inputs and config; after upper_body_planner_init nothing allocates.
 #include "terrain/footstep_planner.hpp"
 #include "terrain/upper_body.hpp"
@@ -30,7 +35,7 @@ inline constexpr int kMaxRoadmapNodes = 40;      ///< Per part: initial variants
 
 struct UpperBodyPlannerConfig {
   UpperBodyParams body;
-  int max_checks_per_part = 12000;  ///< Collision checks a part may spend. [> 0]
+  int max_checks_per_part = 4000;  ///< Collision checks a part may spend. [> 0]
   int grow_tries = 3;               ///< New roadmap nodes grown at a stuck node before backtracking.
   float grow_distance_rad = 0.4f;   ///< r: how far from the current node a new node is grown.
   float visit_cell_rad = 0.04f;     ///< Configurations closer than this at a frame count as the same.
@@ -91,9 +96,15 @@ bool upper_body_planner_init(UpperBodyPlanner& planner, const UpperBodyPlannerCo
 /// `start` (the configuration shown now; clamped to the limits) against `obstacles`. On kOk
 /// `plan.frames[0..track.size())` holds every frame; otherwise num_frames is 0, failed_part and
 /// the part's stats say why. No allocation.
+///
+/// `guide`: the previous window's plan from where this one starts (frame 0 = track frame 0), the
+/// upper body's counterpart of the footstep window's re-seeding (s2..sn, s_init). At each frame
+/// it covers it is the first successor tried, so a plan that is still feasible is kept: the
+/// window that saw an obstacle coming keeps steering around it, instead of a new search starting
+/// over (and possibly too late) from the committed pose.
 UpperBodyStatus upper_body_plan(UpperBodyPlanner& planner, std::span<const PelvisFrame> track, float dt_s,
                                 const UpperBodyObstacles& obstacles, const UpperBodyConfig& start,
-                                UpperBodyPlan& plan);
+                                UpperBodyPlan& plan, std::span<const UpperBodyConfig> guide = {});
 
 /// The patterns at frame 0 of a track: where a fresh actor starts.
 UpperBodyConfig upper_body_pattern_config(const UpperBodyParams& params, const PelvisFrame& frame);
