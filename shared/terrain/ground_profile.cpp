@@ -47,19 +47,75 @@ GroundPath ground_path_from_velocity(vec2 start_m, float heading_rad, float spee
   return path;
 }
 
+namespace {
+
+// Point at s_m along one arc (or line) from p facing h.
+vec2 arc_point(vec2 p, float h, float k, float s_m) {
+  if (std::abs(k) < 1e-6f) return p + vec2(std::sin(h), std::cos(h)) * s_m;
+  // Arc: heading(s) = h + k s; integrate forward(heading) = (sin, cos).
+  const float h1 = h + k * s_m;
+  return p + vec2(std::cos(h) - std::cos(h1), std::sin(h1) - std::sin(h)) / k;
+}
+
+// Walks the pieces up to s_m: the point and heading where the piece holding s_m starts, its
+// curvature and the distance left into it (before the start: the first piece, extended back).
+struct PathCursor {
+  vec2 p;
+  float h, k, s;
+};
+PathCursor path_cursor(const GroundPath& path, float s_m) {
+  PathCursor c{path.start_m, path.heading_rad, path.curvature_per_m, s_m};
+  for (int i = 0; i < path.num_pieces; ++i) {
+    const GroundPath::Piece& piece = path.pieces[static_cast<size_t>(i)];
+    if (c.s <= piece.length_m) return {c.p, c.h, piece.curvature_per_m, c.s};
+    c.p = arc_point(c.p, c.h, piece.curvature_per_m, piece.length_m);
+    c.h += piece.curvature_per_m * piece.length_m;
+    c.s -= piece.length_m;
+  }
+  return c;
+}
+
+void add_piece(GroundPath& path, float length_m, float curvature_per_m) {
+  if (!(length_m > 0.0f)) return;
+  if (path.num_pieces == kMaxPathPieces) {  // never with ground_path_steer's inputs; keep it exact anyway
+    path.pieces[static_cast<size_t>(path.num_pieces - 1)].length_m += length_m;
+    return;
+  }
+  path.pieces[static_cast<size_t>(path.num_pieces++)] = {length_m, curvature_per_m};
+}
+
+}  // namespace
+
 vec2 ground_path_point(const GroundPath& path, float s_m) {
-  const float k = path.curvature_per_m;
-  const vec2 f{std::sin(path.heading_rad), std::cos(path.heading_rad)};
-  if (std::abs(k) < 1e-6f) return path.start_m + f * s_m;
-  // Arc: heading(s) = h0 + k s; integrate forward(heading) = (sin, cos).
-  const float h1 = path.heading_rad + k * s_m;
-  return path.start_m +
-         vec2(std::cos(path.heading_rad) - std::cos(h1), std::sin(h1) - std::sin(path.heading_rad)) /
-             k;
+  const PathCursor c = path_cursor(path, s_m);
+  return arc_point(c.p, c.h, c.k, c.s);
 }
 
 float ground_path_heading(const GroundPath& path, float s_m) {
-  return wrap_angle(path.heading_rad + path.curvature_per_m * s_m);
+  const PathCursor c = path_cursor(path, s_m);
+  return wrap_angle(c.h + c.k * c.s);
+}
+
+GroundPath ground_path_steer(const GroundPath& walked, float from_s_m, float to_s_m, float lead_m, float turn_rad,
+                             float turn_length_m) {
+  const float h0 = ground_path_heading(walked, from_s_m);
+  GroundPath out;
+  out.start_m = ground_path_point(walked, from_s_m) - lead_m * vec2(std::sin(h0), std::cos(h0));
+  out.heading_rad = h0;
+  add_piece(out, lead_m, 0.0f);
+  // The walked stretch, piece by piece (the tail beyond the pieces is one more).
+  float s = 0.0f;
+  for (int i = 0; i <= walked.num_pieces && s < to_s_m; ++i) {
+    const bool tail = i == walked.num_pieces;
+    const float len = tail ? to_s_m - s : walked.pieces[static_cast<size_t>(i)].length_m;
+    const float k = tail ? walked.curvature_per_m : walked.pieces[static_cast<size_t>(i)].curvature_per_m;
+    const float a = std::max(s, from_s_m), b = std::min(s + len, to_s_m);
+    add_piece(out, b - a, k);
+    s += len;
+  }
+  if (turn_length_m > 0.0f) add_piece(out, turn_length_m, turn_rad / turn_length_m);
+  out.curvature_per_m = 0.0f;
+  return out;
 }
 
 bool GroundProfile::height_at(float s_m, float& h_m) const {

@@ -17,12 +17,22 @@ namespace foresight::terrain {
 inline constexpr int kMaxProfileSamples = 1024;
 inline constexpr float kDefaultProfileSpacing_m = 0.02f;
 
+inline constexpr int kMaxPathPieces = 6;
+
 /// The walking path on the ground plane: a straight line (curvature 0) or a circular arc, from
-/// the user's direction or the paper's drag input (translational v, rotational omega).
+/// the user's direction or the paper's drag input (translational v, rotational omega). A steered
+/// walk (ground_path_steer) first runs a few pieces of their own curvature, then continues with
+/// curvature_per_m.
 struct GroundPath {
+  struct Piece {
+    float length_m = 0.0f;
+    float curvature_per_m = 0.0f;
+  };
   vec2 start_m{0.0f};
   float heading_rad = 0.0f;      ///< Direction at the start (math/types.hpp: 0 faces +Z).
-  float curvature_per_m = 0.0f;  ///< d(heading)/d(arc length); positive turns toward +heading.
+  float curvature_per_m = 0.0f;  ///< d(heading)/d(arc length) after the pieces; positive turns toward +heading.
+  std::array<Piece, kMaxPathPieces> pieces{};
+  int num_pieces = 0;
 };
 
 /// The path a drag input gives: curvature = omega / v. A (near) zero v gives a straight path
@@ -33,6 +43,12 @@ GroundPath ground_path_from_velocity(vec2 start_m, float heading_rad, float spee
 vec2 ground_path_point(const GroundPath& path, float s_m);
 /// Heading at arc length s_m.
 float ground_path_heading(const GroundPath& path, float s_m);
+/// The path of a steered walk's next window, in which nothing already walked moves: `lead_m` of
+/// straight line up to the point at `from_s_m` of `walked` (the rear foot), `walked` itself up to
+/// `to_s_m` (the stance foot), then a turn by `turn_rad` spread over `turn_length_m`, then straight.
+/// The rear foot lands at lead_m, the stance foot at lead_m + (to_s_m - from_s_m).
+GroundPath ground_path_steer(const GroundPath& walked, float from_s_m, float to_s_m, float lead_m, float turn_rad,
+                             float turn_length_m);
 
 struct GroundProfile {
   float spacing_m = kDefaultProfileSpacing_m;  ///< Arc length per sample. [Limit: > 0]

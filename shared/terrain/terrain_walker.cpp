@@ -34,6 +34,14 @@ bool terrain_walker_start(TerrainWalker& walker, const Scene& scene, const Groun
   return true;
 }
 
+bool terrain_walker_recut(TerrainWalker& walker, const Scene& scene, const GroundPath& path, float length_m,
+                          float rear_x_m, float stance_x_m) {
+  walker.started = ground_profile_from_scene(scene, path, length_m, ProfileCutOptions{}, walker.profile);
+  walker.window.rear_x_m = rear_x_m;
+  walker.window.stance_x_m = stance_x_m;
+  return walker.started;
+}
+
 TerrainStepStatus terrain_walker_plan_footsteps(TerrainWalker& walker, const Scene& scene) {
   if (!walker.started) return TerrainStepStatus::kNotStarted;
   const TerrainWalkerConfig& c = walker.config;

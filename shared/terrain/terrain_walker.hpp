@@ -50,6 +50,12 @@ bool terrain_walker_init(TerrainWalker& walker, const TerrainWalkerConfig& confi
 /// when the cut is empty.
 bool terrain_walker_start(TerrainWalker& walker, const Scene& scene, const GroundPath& path, float length_m,
                           float start_x_m = 0.3f);
+/// Cuts the scene along `path` (a steered continuation of the walked path: ground_path_steer) and
+/// puts the window's feet on it at rear_x_m and stance_x_m; the rest of the walk (the leg that
+/// swings next, the upper body and its guide, the footstep seed) carries on. False when the cut
+/// is empty (the walker is then not started).
+bool terrain_walker_recut(TerrainWalker& walker, const Scene& scene, const GroundPath& path, float length_m,
+                          float rear_x_m, float stance_x_m);
 /// Plans and commits one step: plan_footsteps, plan_upper_body, commit. kOk: the window slid,
 /// `upper` is the step's last frame; otherwise nothing moved.
 TerrainStepStatus terrain_walker_step(TerrainWalker& walker, const Scene& scene);
