@@ -45,10 +45,10 @@ std::string config_problem(const BotFleetConfig& c) {
 // The NPC fighter nearest `own` in the connection's latest snapshot.
 bool nearest_fighter(const MotionLibrary& library, const protocol::ClientConnection& conn, vec2 own, Threat& out) {
   float best = std::numeric_limits<float>::max();
-  PlaybackState state;
+  Placement root;
   for (const wire::AvatarState& a : conn.avatars()) {
-    if (!(a.flags() & protocol::kAvatarNpc) || !protocol::avatar_playback(library, a, state)) continue;
-    const vec2 pos = playback_root(library, state).pos_m;
+    if (!(a.flags() & protocol::kAvatarNpc) || !protocol::avatar_root(library, a, root)) continue;
+    const vec2 pos = root.pos_m;
     const float d = glm::length(pos - own);
     if (d < best) {
       best = d;
@@ -125,11 +125,7 @@ void BotFleet::frame(TimePoint now) {
       if (observer < 0) observer = i;
       Placement root;
       const Placement* own = nullptr;
-      PlaybackState state;
-      if (const auto* a = bot.conn.own_avatar(); a && protocol::avatar_playback(library_, *a, state)) {
-        root = playback_root(library_, state);
-        own = &root;
-      }
+      if (const auto* a = bot.conn.own_avatar(); a && protocol::avatar_root(library_, *a, root)) own = &root;
       const bool same_scene = world_.loaded && bot.conn.accept().scene == world_.scene_name;
       const double t_s = seconds_between(bot.conn.accepted_at(), now);
       Threat threat;
@@ -147,7 +143,7 @@ void BotFleet::frame(TimePoint now) {
   if (observer != observer_) watch_.restart();
   observer_ = observer;
   if (observer_ >= 0 && world_.loaded) {
-    watch_.observe(library_, world_.world, bots_[static_cast<size_t>(observer_)]->conn);
+    watch_.observe(library_, world_.scene, world_.world, bots_[static_cast<size_t>(observer_)]->conn);
   }
   ++frames_;
   frame_ms_.add(std::chrono::duration<double, std::milli>(Clock::now() - work_start).count());
@@ -174,7 +170,7 @@ void BotFleet::wait_until(TimePoint deadline) {
       if (bot.conn.state() != bot.last_state) on_state_change(bot, i, arrived);
       // Parts of a tick may be superseded before the next frame: check them as they come.
       if (i == observer_ && world_.loaded && bot.conn.connected()) {
-        watch_.observe(library_, world_.world, bot.conn);
+        watch_.observe(library_, world_.scene, world_.world, bot.conn);
       }
     }
   }

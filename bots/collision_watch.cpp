@@ -10,20 +10,26 @@ CollisionWatch::CollisionWatch(float contact_distance_m) : contact_distance_m_(c
   roots_.reserve(1024);
 }
 
-void CollisionWatch::observe(const MotionLibrary& library, const CollisionWorld& world,
+void CollisionWatch::observe(const MotionLibrary& library, const Scene& scene, const CollisionWorld& world,
                              const protocol::ClientConnection& connection) {
   if (!connection.has_snapshot()) return;
   if (!has_tick_ || connection.snapshot_tick() != tick_) {
     has_tick_ = true;
     tick_ = connection.snapshot_tick();
     checked_ = 0;
+    terrain_checked_ = 0;
     roots_.clear();
     ++ticks_checked_;
   }
   const auto avatars = connection.avatars();
-  const float d2_limit = contact_distance_m_ * contact_distance_m_;
   // Parts are appended as they arrive: only the avatars after checked_ are new.
   for (; checked_ < avatars.size(); ++checked_) {
+    if (avatars[checked_].flags() & protocol::kAvatarTerrain) {  // its body is checked below
+      Placement root;
+      protocol::avatar_root(library, avatars[checked_], root);
+      add_root(root.pos_m);
+      continue;
+    }
     PlaybackState state;
     if (!protocol::avatar_playback(library, avatars[checked_], state)) {
       ++invalid_states_;
@@ -41,13 +47,32 @@ void CollisionWatch::observe(const MotionLibrary& library, const CollisionWorld&
                      state.frame, state.incoming_transition, root.pos_m.x, root.pos_m.y, degrees(root.heading_rad));
       }
     }
-    const vec2 root = playback_root(library, state).pos_m;
-    for (const vec2& other : roots_) {
-      const vec2 d = root - other;
-      if (glm::dot(d, d) < d2_limit) ++avatar_contacts_;
-    }
-    roots_.push_back(root);
+    add_root(playback_root(library, state).pos_m);
   }
+  terrain::UpperBodyParams body;
+  body.margin_m = 0.0f;
+  const auto bodies = connection.terrain_bodies();
+  for (; terrain_checked_ < bodies.size(); ++terrain_checked_) {
+    const protocol::TerrainBodyState& b = bodies[terrain_checked_];
+    terrain::TerrainBodyPose pose;
+    terrain::terrain_body_set_angles(pose, b.angles_rad);
+    const terrain::PelvisFrame frame{b.pelvis_m, b.heading_rad, 0.0f, 0.0f};
+    terrain::gather_upper_body_obstacles(scene, std::span(&frame, 1), 1.5f, 0.0f, obstacles_);
+    ++avatars_checked_;
+    if (!obstacles_.overflow && !terrain::upper_body_clear(body, frame, pose.upper, obstacles_) &&
+        ++scene_collisions_ <= 5)
+      std::fprintf(stderr, "foresight-bots: terrain avatar %u's upper body touches the scene in snapshot %u at (%.3f, %.3f)\n",
+                   b.avatar, tick_, b.pelvis_m.x, b.pelvis_m.z);
+  }
+}
+
+void CollisionWatch::add_root(vec2 root) {
+  const float d2_limit = contact_distance_m_ * contact_distance_m_;
+  for (const vec2& other : roots_) {
+    const vec2 d = root - other;
+    if (glm::dot(d, d) < d2_limit) ++avatar_contacts_;
+  }
+  roots_.push_back(root);
 }
 
 }  // namespace foresight::bots

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <string>
 #include <thread>
 
@@ -52,6 +53,13 @@ int main(int argc, char** argv) {
   app.add_option("--tree-depth", config.tree_max_depth, "Tree depth cap")->check(CLI::Range(1, 64))->capture_default_str();
   app.add_option("--max-packets-per-s", config.max_packets_per_s, "Per-session packet rate limit")
       ->check(CLI::Range(1, 100000))->capture_default_str();
+  const std::map<std::string, server::Locomotion> locomotions{
+      {"auto", server::Locomotion::kAuto}, {"graph", server::Locomotion::kGraph}, {"terrain", server::Locomotion::kTerrain}};
+  app.add_option("--locomotion", config.locomotion,
+                 "How players move: graph (motion tree), terrain (footstep planner; no fighters), auto (terrain "
+                 "when the scene has terrain)")
+      ->transform(CLI::CheckedTransformer(locomotions, CLI::ignore_case))
+      ->capture_default_str();
   double seconds = 0;
   app.add_option("--fighters", config.fighters,
                  "NPC fighters (-1: one per NPC spawn of the scene; N: that many)")

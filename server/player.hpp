@@ -4,6 +4,7 @@
 #include "fighters/fighter_npc.hpp"
 #include "lookahead/lookahead_avatar.hpp"
 #include "protocol/udp_socket.hpp"
+#include "terrain/terrain_avatar.hpp"
 #include "server.hpp"
 
 #include <memory>
@@ -16,7 +17,8 @@ struct Server::Player {
   uint32_t session = 0;
   uint32_t avatar_id = 0;
   std::string name;
-  std::unique_ptr<LookaheadAvatar> avatar;
+  std::unique_ptr<LookaheadAvatar> avatar;          ///< Motion-graph avatars (and fighters).
+  std::unique_ptr<terrain::TerrainAvatar> terrain;  ///< Terrain avatars (Locomotion::kTerrain).
   std::unique_ptr<FighterNpc> fighter;  ///< Set for NPC fighters.
   Clock::time_point last_heard{};
   bool any_input = false;

@@ -61,21 +61,30 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   tree_config_.strategy = config_.strategy;
   tree_config_.max_nodes = std::max(config_.tree_max_nodes, 16);
   tree_config_.max_depth = std::max(config_.tree_max_depth, 1);
+  terrain_mode_ = config_.locomotion == Locomotion::kTerrain ||
+                  (config_.locomotion == Locomotion::kAuto &&
+                   (!scene_.terrain.height_field.empty() || !scene_.terrain.steps.empty()));
+  terrain_config_.walker.dt_s = 1.0f / static_cast<float>(config_.tick_hz);
+  if (terrain_mode_ && (config_.fighters > 0 || (config_.fighters < 0 && !scene_.npcs.empty())))
+    std::fprintf(stderr, "foresight-server: no NPC fighters on terrain (they walk the motion graph)\n");
+  if (terrain_mode_) config_.fighters = 0;
   if (!socket_.open(config_.bind_address, config_.port, error)) return false;
   receive_buffer_.resize(protocol::kMaxDatagramBytes + 1);
   reservations_.configure(scene_.bounds);
   workers_ = std::make_unique<LookaheadWorkers>(config_.threads);
   grow_deadline_.resize(static_cast<size_t>(config_.threads));
   players_.reserve(static_cast<size_t>(config_.max_players));
+  tree_players_.reserve(players_.capacity() + 256);  // + fighters
+  terrain_neighbours_.reserve(players_.capacity());
   started_ = Clock::now();
   if (!spawn_fighters(error)) return false;
   std::fprintf(stderr,
                "foresight-server: scene %s, library %s (%d segments, hash %016llx), UDP %s:%u, "
-               "%d Hz ticks, %d Hz snapshots, %d look-ahead thread(s), strategy %d\n",
+               "%d Hz ticks, %d Hz snapshots, %d look-ahead thread(s), strategy %d, %s locomotion\n",
                scene_.name.c_str(), library_.name.c_str(), library_.graph.num_segments(),
                static_cast<unsigned long long>(library_.content_hash), config_.bind_address.c_str(),
                port(), config_.tick_hz, config_.snapshot_hz, config_.threads,
-               static_cast<int>(config_.strategy));
+               static_cast<int>(config_.strategy), terrain_mode_ ? "terrain" : "motion-graph");
   return true;
 }
 
@@ -84,6 +93,12 @@ int Server::num_players() const { return static_cast<int>(players_.size()) - num
 const LookaheadAvatar* Server::avatar(uint32_t avatar_id) const {
   for (const auto& p : players_)
     if (p->avatar_id == avatar_id) return p->avatar.get();
+  return nullptr;
+}
+
+const terrain::TerrainAvatar* Server::terrain_avatar(uint32_t avatar_id) const {
+  for (const auto& p : players_)
+    if (p->avatar_id == avatar_id) return p->terrain.get();
   return nullptr;
 }
 
@@ -123,7 +138,7 @@ void Server::run_tick(Clock::time_point now) {
   // Look ahead, then decide: the avatar's order of LookaheadAvatar (set_input, grow, step).
   grow_trees(tick_start, received, record);
   const Clock::time_point grown = Clock::now();
-  advance();
+  advance(record);
   const Clock::time_point advanced = Clock::now();
   record.advance_ms = static_cast<float>(ms_between(grown, advanced));
   send_snapshots(now);
@@ -153,7 +168,8 @@ void Server::log_status() const {
                "foresight-server: tick %u, %d players; tick ms p50 %.2f p99 %.2f, %llu overruns; mean ms: "
                "receive %.2f, look-ahead %.1f of %.1f, advance %.2f, send %.2f; %lld expansions/tick, tree "
                "size mean %.0f min %d; %llu packets in, %llu dropped; joins %llu (%llu deferred, %llu refused); "
-               "%llu avatar contacts; %d fighters, %llu strikes, %llu hits\n",
+               "%llu avatar contacts; %d fighters, %llu strikes, %llu hits; terrain %.2f ms/tick, %llu steps, "
+               "%llu turns on the spot, %llu refusals\n",
                tick_, num_players(), stats_.tick_ms_percentile(50), stats_.tick_ms_percentile(99),
                static_cast<unsigned long long>(stats_.overruns()), mean.receive_ms, mean.lookahead_ms,
                mean.budget_ms, mean.advance_ms, mean.send_ms,
@@ -165,7 +181,10 @@ void Server::log_status() const {
                static_cast<unsigned long long>(counters_.refused),
                static_cast<unsigned long long>(counters_.avatar_contacts), num_fighters_,
                static_cast<unsigned long long>(counters_.fighter_strikes),
-               static_cast<unsigned long long>(counters_.fighter_hits));
+               static_cast<unsigned long long>(counters_.fighter_hits), mean.terrain_ms,
+               static_cast<unsigned long long>(counters_.terrain_steps),
+               static_cast<unsigned long long>(counters_.terrain_pivots),
+               static_cast<unsigned long long>(counters_.terrain_refusals));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -338,12 +357,20 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
   p->session = next_session_++;
   p->avatar_id = next_avatar_++;
   p->name = join.name;
-  p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, spawn);
+  if (terrain_mode_) {
+    p->terrain = std::make_unique<terrain::TerrainAvatar>();
+    if (!terrain::terrain_avatar_init(*p->terrain, terrain_config_, scene_, spawn.pos_m, spawn.heading_rad)) {
+      send_refuse(from, wire::RefuseReason::ServerFull, "no ground at the free spawn place: try again later");
+      return;
+    }
+  } else {
+    p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, spawn);
+    // Reserve the spawn at once, so a second player joining this tick keeps clear of it.
+    reservations_.add(static_cast<int>(p->avatar_id), library_, spawn_segment_, 0, spawn);
+  }
   p->last_heard = now;
   p->tokens = config_.max_packets_per_s;
   p->tokens_at = now;
-  // Reserve the spawn at once, so a second player joining this tick keeps clear of it.
-  reservations_.add(static_cast<int>(p->avatar_id), library_, spawn_segment_, 0, spawn);
   send_accept(*p);
   ++counters_.sessions_opened;
   std::fprintf(stderr, "foresight-server: player %u '%s' joined from %s:%u (session %u, %d players)\n",
@@ -429,6 +456,7 @@ void Server::send_stats(const Player& p) {
 
 void Server::send_tree(Player& p) {
   // Only ever the requester's own tree: the session named in the request is the player's.
+  if (!p.avatar) return;  // a terrain avatar has none
   send(tree_summary_.write(writer_, p.avatar->tree(), tick_, p.avatar_id), p.endpoint);
 }
 
@@ -438,7 +466,14 @@ void Server::send_snapshots(Clock::time_point now) {
   snapshot_accumulator_ -= 1.0;
   ++snapshot_tick_;
   snapshot_states_.clear();
+  snapshot_terrain_.clear();
+  terrain_before_.clear();
   for (const auto& p : players_) {
+    terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
+    if (p->terrain) {
+      collect_terrain_body(*p);
+      continue;
+    }
     const PlaybackState& s = p->avatar->playback();
     wire::AvatarState a(p->avatar_id, protocol::quantize_mm(s.segment_start.pos_m.x),
                         protocol::quantize_mm(s.segment_start.pos_m.y), s.incoming_transition,
@@ -453,6 +488,7 @@ void Server::send_snapshots(Clock::time_point now) {
                         0);
     snapshot_states_.push_back(a);
   }
+  terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
   collect_fighter_poses();
   plan_snapshot_parts();
   const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
@@ -479,12 +515,16 @@ void Server::send_snapshots(Clock::time_point now) {
         }
         fighters = fbb.CreateVector(fighter_offsets_);
       }
+      flatbuffers::Offset<flatbuffers::Vector<const wire::TerrainBody*>> terrain_bodies = 0;
+      const uint32_t terrain_begin = terrain_before_[plan.avatars_begin], terrain_end = terrain_before_[plan.avatars_end];
+      if (terrain_end > terrain_begin)
+        terrain_bodies = fbb.CreateVectorOfStructs(snapshot_terrain_.data() + terrain_begin, terrain_end - terrain_begin);
       flatbuffers::Offset<flatbuffers::Vector<const wire::StrikeEventState*>> events = 0;
       if (plan.events && !snapshot_events_.empty())
         events = fbb.CreateVectorOfStructs(snapshot_events_.data(), snapshot_events_.size());
       const auto bytes = writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts,
                                                              p->last_input_seq, p->echo_client_time_ms, server_ms,
-                                                             avatars, fighters, events));
+                                                             avatars, fighters, events, terrain_bodies));
       for (size_t i = plan.avatars_begin; i < plan.avatars_end; ++i)
         if (snapshot_states_[i].id() == p->avatar_id)
           snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() & ~protocol::kAvatarYours);
@@ -509,8 +549,11 @@ void Server::plan_snapshot_parts() {
       bytes += 64 + 4 * fighter_poses_[fighter++].num_rotations;
     part.fighters_end = fighter;
     part.avatars_begin = avatar;
-    while (avatar < snapshot_states_.size() && bytes + sizeof(wire::AvatarState) <= kBudget) {
-      bytes += sizeof(wire::AvatarState);
+    for (;;) {
+      if (avatar == snapshot_states_.size()) break;
+      const size_t body = (terrain_before_[avatar + 1] - terrain_before_[avatar]) * sizeof(wire::TerrainBody);
+      if (bytes + sizeof(wire::AvatarState) + body > kBudget) break;
+      bytes += sizeof(wire::AvatarState) + body;
       ++avatar;
     }
     part.avatars_end = avatar;
@@ -565,8 +608,12 @@ bool Server::find_free_place(std::span<const Placement> around, Placement& out) 
         const Placement p{centre.pos_m + 0.9f * static_cast<float>(ring) * vec2(std::sin(a), std::cos(a)),
                           centre.heading_rad};
         if (!scene_.bounds.contains(p.pos_m)) continue;
-        if (!segment_feasible(world_, library_.segment_shapes[static_cast<size_t>(spawn_segment_)], p)) continue;
-        if (reservations_.blocks(-1, library_, spawn_segment_, p)) continue;
+        if (terrain_mode_) {
+          if (!terrain_place_free(p)) continue;
+        } else {
+          if (!segment_feasible(world_, library_.segment_shapes[static_cast<size_t>(spawn_segment_)], p)) continue;
+          if (reservations_.blocks(-1, library_, spawn_segment_, p)) continue;
+        }
         out = p;
         return true;
       }
@@ -575,17 +622,18 @@ bool Server::find_free_place(std::span<const Placement> around, Placement& out) 
   return false;
 }
 
-void Server::advance() {
+void Server::advance(TickRecord& record) {
   // Reservations: every avatar's committed motion as it stands now.
   reservations_.clear();
   for (const auto& p : players_) {
+    if (!p->avatar) continue;
     const PlaybackState& s = p->avatar->playback();
     reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, s.frame, s.segment_start);
   }
   const double fps = library_.clips.empty() ? 30.0 : library_.clips.front().fps;
   const int64_t due = frames_due(tick_, fps, config_.tick_hz) - frames_due(tick_ - 1, fps, config_.tick_hz);
   for (const auto& p : players_) {
-    for (int64_t f = 0; f < due; ++f) {
+    for (int64_t f = 0; f < due && p->avatar; ++f) {
       const ReservationVeto veto(reservations_, library_, static_cast<int>(p->avatar_id));
       const AvatarStepResult r = p->avatar->step(&veto);
       if (r.fallback) ++counters_.fallbacks;
@@ -596,10 +644,14 @@ void Server::advance() {
     }
   }
   animate_fighters(due);
+  advance_terrain(record);
 }
 
 void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record) {
-  const size_t n = players_.size();
+  tree_players_.clear();
+  for (const auto& p : players_)
+    if (p->avatar) tree_players_.push_back(p.get());
+  const size_t n = tree_players_.size();
   if (n == 0) {
     record.tree_size_min = -1;  // no players: not part of the tree figures
     return;
@@ -616,7 +668,7 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
   grow_expansions_.assign(n, 0);
   double total = 0;
   for (size_t i = 0; i < n; ++i) {
-    const LookaheadAvatar& a = *players_[i]->avatar;
+    const LookaheadAvatar& a = *tree_players_[i]->avatar;
     const int left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
     const double thin = std::clamp(1.0 - a.tree().num_nodes() / 64.0, 0.0, 1.0);
     const double soon = std::clamp(1.0 - left / 15.0, 0.0, 1.0);
@@ -633,7 +685,7 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
     Clock::time_point end;
   } phase{per_weight_ms, end};
   workers_->run(static_cast<int>(n), [this, &phase](int item, int) {
-    Player& p = *players_[static_cast<size_t>(item)];
+    Player& p = *tree_players_[static_cast<size_t>(item)];
     LookaheadAvatar& a = *p.avatar;
     GrowBudget budget;
     const bool timed = config_.expansions_per_avatar <= 0;
@@ -665,7 +717,7 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
   int min_nodes = INT32_MAX;
   for (size_t i = 0; i < n; ++i) {
     expansions += grow_expansions_[i];
-    const int size = players_[i]->avatar->tree().num_nodes();
+    const int size = tree_players_[i]->avatar->tree().num_nodes();
     nodes += size;
     min_nodes = std::min(min_nodes, size);
   }
@@ -675,14 +727,18 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
 }
 
 void Server::check_contacts() {
-  // Independent of the reservations: do two avatars' bodies (this frame's volumes) overlap?
+  // Independent of the reservations and the terrain veto: do two avatars' bodies (this frame's
+  // volumes; a terrain body's pelvis circle) overlap?
+  const auto body = [this](const Player& p) {
+    if (p.terrain) return BodyVolume{terrain::terrain_avatar_ground(*p.terrain), terrain::kTerrainBodyRadius_m};
+    const PlaybackState& s = p.avatar->playback();
+    return place(library_.volumes(s.segment)[static_cast<size_t>(s.frame)], s.segment_start);
+  };
   const size_t n = players_.size();
   for (size_t i = 0; i < n; ++i) {
-    const PlaybackState& a = players_[i]->avatar->playback();
-    const BodyVolume va = place(library_.volumes(a.segment)[static_cast<size_t>(a.frame)], a.segment_start);
+    const BodyVolume va = body(*players_[i]);
     for (size_t j = i + 1; j < n; ++j) {
-      const PlaybackState& b = players_[j]->avatar->playback();
-      const BodyVolume vb = place(library_.volumes(b.segment)[static_cast<size_t>(b.frame)], b.segment_start);
+      const BodyVolume vb = body(*players_[j]);
       const float r = va.radius_m + vb.radius_m;
       const vec2 d = va.center_m - vb.center_m;
       if (glm::dot(d, d) < r * r) {

@@ -5,7 +5,9 @@
 //             datagram verified first, bad ones dropped and counted by reason
 //   expire    drop sessions silent for session_timeout_s (their avatars go with them)
 //   advance   play each avatar's clip frames due this tick; at a segment end it takes its tree's
-//             best child that keeps clear of the other avatars' committed motion (reservations)
+//             best child that keeps clear of the other avatars' committed motion (reservations).
+//             Terrain avatars (Locomotion::kTerrain) play one frame and plan their next step
+//             where one ends (server_terrain.cpp)
 //   look      grow every avatar's feasible motion tree within the tick's look-ahead budget,
 //             shared by need, on `threads` cores
 //   send      snapshots at snapshot_hz
@@ -14,6 +16,7 @@
 // expansion-budget mode); run() loops it at tick_hz until stop() is called.
 #include "lookahead/lookahead_avatar.hpp"
 #include "lookahead/reservations.hpp"
+#include "terrain/terrain_avatar.hpp"
 #include "admin_commands.hpp"
 #include "fighters/fighter_assets.hpp"
 #include "fighters/fighter_npc.hpp"
@@ -60,6 +63,9 @@ struct ServerCounters {
   uint64_t fighter_strikes = 0;     ///< Strikes judged.
   uint64_t fighter_hits = 0;
   uint64_t fighter_strike_failures = 0;  ///< Decided but not startable (logged).
+  uint64_t terrain_steps = 0;     ///< Steps terrain avatars committed.
+  uint64_t terrain_pivots = 0;    ///< Turns on the spot.
+  uint64_t terrain_refusals = 0;  ///< Plans that failed or were vetoed (the avatar stood).
   protocol::DropCounters drops;
 };
 
@@ -85,8 +91,12 @@ class Server {
   int num_players() const;
   uint32_t tick() const { return tick_; }
 
-  /// A player's avatar, for tests and tools (nullptr if none with that id).
+  /// A player's avatar, for tests and tools (nullptr if none with that id, or a terrain avatar).
   const LookaheadAvatar* avatar(uint32_t avatar_id) const;
+  /// A terrain player's avatar (nullptr if none with that id on terrain).
+  const terrain::TerrainAvatar* terrain_avatar(uint32_t avatar_id) const;
+  /// Players walk by the terrain planners (ServerConfig::locomotion, resolved at start).
+  bool terrain_mode() const { return terrain_mode_; }
   /// Avatar ids in play (players and fighters).
   std::vector<uint32_t> avatar_ids() const;
   /// NPC fighters' avatar ids, in spawn order.
@@ -132,7 +142,7 @@ class Server {
   void send_tree(Player& p);
   void expire(Clock::time_point now);
   void remove_player(size_t index);
-  void advance();
+  void advance(TickRecord& record);
   void grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record);
   void send_snapshots(Clock::time_point now);
   void check_contacts();
@@ -144,6 +154,10 @@ class Server {
   void plan_snapshot_parts();
   void judge_strike(Player& fighter, const StrikeFrame& frame);
   vec3 head_position(const LookaheadAvatar& avatar);
+  // Terrain avatars (server_terrain.cpp).
+  bool terrain_place_free(const Placement& place) const;
+  void advance_terrain(TickRecord& record);
+  void collect_terrain_body(const Player& p);
   void log_status() const;
   bool find_spawn(Placement& out) const;
   bool find_free_place(std::span<const Placement> around, Placement& out) const;
@@ -189,6 +203,12 @@ class Server {
   std::vector<uint32_t> fighter_rotations_;
   std::vector<wire::StrikeEventState> snapshot_events_;
   std::vector<SnapshotPart> snapshot_parts_;
+  std::vector<wire::TerrainBody> snapshot_terrain_;  ///< Terrain avatars' bodies, in snapshot_states_ order.
+  std::vector<uint32_t> terrain_before_;             ///< Per snapshot avatar (and one past): bodies before it.
+  bool terrain_mode_ = false;
+  terrain::TerrainAvatarConfig terrain_config_;
+  std::vector<terrain::TerrainNeighbour> terrain_neighbours_;  ///< Reused per planning avatar.
+  std::vector<Player*> tree_players_;                ///< Players with a motion tree, this tick.
   std::vector<flatbuffers::Offset<wire::FighterPose>> fighter_offsets_;
   TreeSummaryWriter tree_summary_;                  ///< Reused for every TreeRequest.
   std::vector<double> grow_weight_;                 ///< Per player, reused.

@@ -9,6 +9,13 @@
 
 namespace foresight::server {
 
+/// How players' avatars move.
+enum class Locomotion : std::uint8_t {
+  kAuto,     ///< Terrain when the scene has a height field or step blocks, else the graph.
+  kGraph,    ///< The feasible motion tree over the motion graph (issue 3).
+  kTerrain,  ///< The footstep and upper-body planners (issue 7, docs/TERRAIN.md).
+};
+
 struct ServerConfig {
   std::string scene = "maze";      ///< data/scenes/<scene>.json
   std::string bind_address = "0.0.0.0";
@@ -41,6 +48,7 @@ struct ServerConfig {
   /// costs about a millisecond); verified joins beyond it wait in a queue, first come first served.
   int max_joins_per_tick = 4;
   MotionSource motions;            ///< Default library, or --motions DIR.
+  Locomotion locomotion = Locomotion::kAuto;
   /// NPC fighters (issue 6): -1 = one per NPC spawn of the scene; N >= 0 = that many (beyond the
   /// scene's NPC spawns they start at its player spawns: load tests).
   int fighters = -1;

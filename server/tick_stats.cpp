@@ -31,13 +31,15 @@ float TickStats::tick_ms_max() const {
 TickRecord TickStats::mean() const {
   TickRecord m;
   if (count_ == 0) return m;
-  double tick = 0, budget = 0, look = 0, exp = 0, size = 0, players = 0, rec = 0, adv = 0, snd = 0;
+  double tick = 0, budget = 0, look = 0, exp = 0, size = 0, players = 0, rec = 0, adv = 0, snd = 0, ter = 0,
+         plans = 0;
   int size_min = -1, with_players = 0;
   for (int i = 0; i < count_; ++i) {
     const TickRecord& r = ring_[static_cast<size_t>(i)];
     tick += r.tick_ms, budget += r.budget_ms, look += r.lookahead_ms;
     rec += r.receive_ms, adv += r.advance_ms, snd += r.send_ms;
     exp += static_cast<double>(r.expansions), players += r.players;
+    ter += r.terrain_ms, plans += r.terrain_plans;
     if (r.tree_size_min < 0) continue;  // a tick without players
     ++with_players;
     size += r.tree_size_mean;
@@ -51,6 +53,8 @@ TickRecord TickStats::mean() const {
   m.advance_ms = static_cast<float>(adv / n);
   m.send_ms = static_cast<float>(snd / n);
   m.expansions = static_cast<int64_t>(exp / n);
+  m.terrain_ms = static_cast<float>(ter / n);
+  m.terrain_plans = static_cast<int>(std::lround(plans / n));
   m.tree_size_mean = with_players > 0 ? static_cast<float>(size / with_players) : 0.0f;
   m.tree_size_min = std::max(size_min, 0);
   m.players = static_cast<int>(players / n);

@@ -13,6 +13,8 @@ struct TickRecord {
   float receive_ms = 0;     ///< Draining the socket and expiring sessions.
   float advance_ms = 0;     ///< Playing frames and deciding (reservations included).
   float send_ms = 0;        ///< Snapshots and the contact check.
+  float terrain_ms = 0;     ///< Terrain avatars' frames and step plans (part of advance_ms).
+  int terrain_plans = 0;    ///< Terrain step plans (and turns on the spot) tried this tick.
   int64_t expansions = 0;
   int tree_size_min = 0;    ///< -1: no players this tick.
   float tree_size_mean = 0;

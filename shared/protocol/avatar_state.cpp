@@ -1,5 +1,6 @@
 #include "protocol/avatar_state.hpp"
 
+#include "protocol/protocol.hpp"
 #include "protocol/quantize.hpp"
 
 namespace foresight::protocol {
@@ -21,6 +22,18 @@ bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& stat
   out.segment_start.pos_m = vec2(protocol::dequantize_mm(state.start_x_mm()),
                                  protocol::dequantize_mm(state.start_z_mm()));
   out.segment_start.heading_rad = protocol::dequantize_angle(state.start_heading());
+  return true;
+}
+
+bool avatar_root(const MotionLibrary& library, const wire::AvatarState& state, Placement& out) {
+  if (state.flags() & kAvatarTerrain) {
+    out = {vec2(dequantize_mm(state.start_x_mm()), dequantize_mm(state.start_z_mm())),
+           dequantize_angle(state.start_heading())};
+    return true;
+  }
+  PlaybackState playback;
+  if (!avatar_playback(library, state, playback)) return false;
+  out = playback_root(library, playback);
   return true;
 }
 

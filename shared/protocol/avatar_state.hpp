@@ -12,4 +12,8 @@ namespace foresight::protocol {
 bool avatar_playback(const MotionLibrary& library, const wire::AvatarState& state,
                      PlaybackState& out);
 
+/// Where the avatar stands now: a terrain avatar (kAvatarTerrain) says it outright, the others by
+/// their playback. False when a playback state is invalid for `library`.
+bool avatar_root(const MotionLibrary& library, const wire::AvatarState& state, Placement& out);
+
 }  // namespace foresight::protocol

@@ -56,6 +56,7 @@ const char* client_state_name(ClientState state) {
 ClientConnection::ClientConnection(const ClientConfig& config) : config_(config) {
   avatars_.reserve(config_.reserve_avatars);
   fighters_.reserve(16);
+  terrain_bodies_.reserve(config_.reserve_avatars);
   new_strike_events_.reserve(16);
   tree_.end_m.reserve(kMaxTreeSamples);
   tree_.parent.reserve(kMaxTreeSamples);
@@ -91,6 +92,7 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   snapshot_parts_seen_.reset();
   avatars_.clear();
   fighters_.clear();
+  terrain_bodies_.clear();
   new_strike_events_.clear();
   last_strike_sequence_ = 0;  // a new session numbers its events from 1 again
   tree_count_ = 0;
@@ -267,6 +269,7 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     snapshot_parts_seen_.reset();
     avatars_.clear();
     fighters_.clear();
+    terrain_bodies_.clear();
     last_new_tick_at_ = now;
     ++snapshot_ticks_;
   } else if (tick != snapshot_tick_) {
@@ -302,6 +305,18 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
       out.pelvis_m = vec3(dequantize_mm(f->pelvis_x_mm()), dequantize_mm(f->pelvis_y_mm()), dequantize_mm(f->pelvis_z_mm()));
       out.num_joints = static_cast<uint16_t>(rotations->size());
       std::copy(rotations->begin(), rotations->end(), out.rotations.begin());
+    }
+  }
+  if (const auto* list = m.terrain_bodies()) {
+    for (const wire::TerrainBody* b : *list) {
+      TerrainBodyState& out = terrain_bodies_.emplace_back();
+      out.avatar = b->avatar();
+      out.pelvis_m = vec3(dequantize_mm(b->pelvis_x_mm()), dequantize_mm(b->pelvis_y_mm()), dequantize_mm(b->pelvis_z_mm()));
+      out.heading_rad = dequantize_angle(b->heading());
+      out.status = b->status();
+      out.flags = b->flags();
+      for (size_t i = 0; i < out.angles_rad.size(); ++i)
+        out.angles_rad[i] = static_cast<float>(b->angles()->Get(static_cast<flatbuffers::uoffset_t>(i))) * kTerrainAngleUnitRad;
     }
   }
   if (const auto* list = m.events()) {

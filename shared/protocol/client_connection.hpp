@@ -115,6 +115,17 @@ struct FighterPoseState {
   std::array<uint32_t, kMaxFighterJoints> rotations{};
 };
 
+/// A terrain avatar's body from a snapshot (schema TerrainBody), dequantised: the 16 angles in
+/// terrain_body_angles() order (shared/terrain/terrain_body.hpp turns them into a pose).
+struct TerrainBodyState {
+  uint32_t avatar = 0;
+  vec3 pelvis_m{0.0f};
+  float heading_rad = 0.0f;
+  uint8_t status = 0;  ///< TerrainStepStatus of its last plan.
+  uint8_t flags = 0;   ///< TerrainBodyFlags.
+  std::array<float, 16> angles_rad{};
+};
+
 /// A strike's outcome (schema StrikeEventState), decoded.
 struct StrikeEventInfo {
   uint32_t sequence = 0;
@@ -184,6 +195,8 @@ class ClientConnection {
   std::span<const wire::AvatarState> avatars() const { return avatars_; }
   /// The NPC fighters' poses of the newest tick (parts merged as they arrive).
   std::span<const FighterPoseState> fighters() const { return fighters_; }
+  /// The terrain avatars' bodies of the newest tick (parts merged as they arrive).
+  std::span<const TerrainBodyState> terrain_bodies() const { return terrain_bodies_; }
   /// Strike events not taken before, in sequence order, appended to `out` (each once, however
   /// many snapshots repeat it).
   void take_strike_events(std::vector<StrikeEventInfo>& out);
@@ -268,6 +281,7 @@ class ClientConnection {
   std::bitset<256> snapshot_parts_seen_;
   std::vector<wire::AvatarState> avatars_;
   std::vector<FighterPoseState> fighters_;
+  std::vector<TerrainBodyState> terrain_bodies_;
   std::vector<StrikeEventInfo> new_strike_events_;
   uint32_t last_strike_sequence_ = 0;
   bool has_own_avatar_ = false;

@@ -6,7 +6,7 @@
 namespace foresight::protocol {
 
 /// Bumped whenever a peer of the previous version could misread a message.
-inline constexpr uint32_t kProtocolVersion = 3;  // 2: TreeNodeSample carries segment, heading; 3: fighters
+inline constexpr uint32_t kProtocolVersion = 4;  // 2: TreeNodeSample carries segment, heading; 3: fighters; 4: terrain bodies
 
 /// Largest datagram anyone sends: under the common 1280-byte IPv6 minimum MTU after headers, so
 /// nothing is ever fragmented.
@@ -28,6 +28,18 @@ enum AvatarFlags : uint8_t {
   kAvatarFallback = 1u << 1,  ///< Stopped: nothing feasible ahead (idle fallback).
   kAvatarNpc = 1u << 2,       ///< Server-controlled.
   kAvatarStriking = 1u << 3,  ///< An NPC fighter between the start of a strike and its end.
+  /// Walks by the terrain planners: no segment; start_x/z and start_heading are where its pelvis
+  /// stands now, its body is the snapshot's TerrainBody with the same id.
+  kAvatarTerrain = 1u << 4,
+};
+/// AvatarState::segment of a terrain avatar.
+inline constexpr uint16_t kNoSegment = 0xFFFF;
+/// TerrainBody::angles: radians per unit.
+inline constexpr float kTerrainAngleUnitRad = 1e-4f;
+/// TerrainBody::flags bits.
+enum TerrainBodyFlags : uint8_t {
+  kTerrainWalking = 1u << 0,
+  kTerrainPivoting = 1u << 1,
 };
 
 /// Fighters' poses: at most this many joints are sent (the default skeleton has fewer).

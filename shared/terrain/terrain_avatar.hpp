@@ -19,6 +19,9 @@
 
 namespace foresight::terrain {
 
+/// The body's footprint on the ground (a disc around the pelvis), for contact checks.
+inline constexpr float kTerrainBodyRadius_m = 0.25f;
+
 struct TerrainAvatarConfig {
   TerrainWalkerConfig walker;
   float max_turn_per_step_rad = 0.5f;
@@ -74,6 +77,11 @@ bool terrain_avatar_init(TerrainAvatar& avatar, const TerrainAvatarConfig& confi
 bool terrain_avatar_frame(TerrainAvatar& avatar, const Scene& scene, vec2 direction,
                           std::span<const TerrainNeighbour> others);
 
+/// True when the next terrain_avatar_frame may plan (a step ends, or the avatar stands): the
+/// only frames that need the neighbours.
+inline bool terrain_avatar_may_plan(const TerrainAvatar& a) {
+  return a.stepping ? a.frame + 1 >= a.step_frames : !a.pivoting || a.pivot_frame + 1 >= a.pivot_frames;
+}
 /// Where the pelvis is, on the ground.
 inline vec2 terrain_avatar_ground(const TerrainAvatar& avatar) { return ground(avatar.body.pelvis_m); }
 

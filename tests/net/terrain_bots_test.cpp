@@ -1,0 +1,107 @@
+// Bots walk the terrain scene (issue 7): a real server in terrain locomotion and real bots over
+// loopback UDP, one fake clock. The avatars move by the footstep and upper-body planners, the
+// snapshots carry their bodies (TerrainBody), the bots' watch checks every body against the scene.
+#include "bot_fleet.hpp"
+#include "raw_client.hpp"
+#include "support/test_paths.hpp"
+
+#include <gtest/gtest.h>
+
+namespace foresight {
+namespace {
+
+using namespace std::chrono_literals;
+
+struct TerrainMatch {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  bots::BotFleetConfig config;
+
+  explicit TerrainMatch(int bots, server::Locomotion locomotion = server::Locomotion::kAuto) {
+    std::string error;
+    server::ServerConfig server_config = test::test_server_config("terrain");
+    server_config.locomotion = locomotion;
+    EXPECT_TRUE(server.start(server_config, error)) << error;
+    EXPECT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(server.port()), config.server, error));
+    config.count = bots;
+    config.script = bots::BotScript::kGoals;
+    config.seed = 3;
+  }
+  void play(bots::BotFleet& fleet, int frames) {
+    for (int i = 0; i < frames; ++i) {
+      now += 33ms;
+      server.run_tick(now);
+      fleet.frame(now);
+    }
+  }
+};
+
+TEST(TerrainBots, GoalSeekersWalkTheTerrainSceneByTheFootstepPlanner) {
+  TerrainMatch m(4);
+  ASSERT_TRUE(m.server.terrain_mode()) << "the terrain scene has a height field: auto picks terrain";
+  EXPECT_EQ(m.server.num_fighters(), 0);
+  bots::BotFleet fleet(m.server.library(), m.config);
+  ASSERT_TRUE(fleet.ok()) << fleet.error();
+  m.play(fleet, 30 * 40);  // 40 s
+  for (uint32_t id : m.server.avatar_ids()) {
+    const terrain::TerrainAvatar* a = m.server.terrain_avatar(id);
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ(m.server.avatar(id), nullptr) << "no motion tree on terrain";
+    EXPECT_GT(a->steps, 5) << "avatar " << id;
+    std::printf("[          ] avatar %u: %d steps, %d turns on the spot, %d refusals (last: %s%s) at (%.2f, %.2f)\n", id,
+                a->steps, a->pivots, a->refusals, terrain::terrain_step_status_name(a->last_status),
+                a->vetoed ? ", vetoed" : "", a->body.pelvis_m.x, a->body.pelvis_m.z);
+  }
+  const bots::BotReport r = fleet.report(m.now);
+  fleet.disconnect_all();
+  EXPECT_EQ(r.connected_at_end, 4);
+  EXPECT_GT(r.walked_m_mean, 8.0);
+  EXPECT_GT(r.goals_reached, 0u);
+  EXPECT_EQ(r.invalid_states, 0u) << "terrain avatars' states are not library playbacks, and not rejected";
+  EXPECT_EQ(r.scene_collisions, 0u);
+  EXPECT_EQ(r.avatar_contacts, 0u);
+  EXPECT_EQ(m.server.counters().avatar_contacts, 0u);
+  EXPECT_GT(m.server.counters().terrain_steps, 40u);
+  EXPECT_GT(r.avatars_checked, 4u * 20 * 20);
+  EXPECT_GT(m.server.tick_stats().mean().terrain_ms, 0.0f);
+}
+
+TEST(TerrainBots, SnapshotsCarryEveryTerrainBodyWithItsAvatar) {
+  TerrainMatch m(3);
+  bots::BotFleet fleet(m.server.library(), m.config);
+  ASSERT_TRUE(fleet.ok()) << fleet.error();
+  m.play(fleet, 30 * 4);
+  // Each bot's view of the newest tick: three terrain avatars, each with its body, whose pelvis
+  // is where the server has it (1 mm quantisation; a tick behind at most).
+  for (int i = 0; i < 3; ++i) {
+    const protocol::ClientConnection& c = fleet.connection(i);
+    ASSERT_TRUE(c.has_snapshot());
+    ASSERT_EQ(c.avatars().size(), 3u);
+    ASSERT_EQ(c.terrain_bodies().size(), 3u);
+    for (const wire::AvatarState& s : c.avatars()) {
+      EXPECT_TRUE(s.flags() & protocol::kAvatarTerrain);
+      EXPECT_EQ(s.segment(), protocol::kNoSegment);
+      const auto body = std::find_if(c.terrain_bodies().begin(), c.terrain_bodies().end(),
+                                     [&](const protocol::TerrainBodyState& b) { return b.avatar == s.id(); });
+      ASSERT_NE(body, c.terrain_bodies().end());
+      const terrain::TerrainAvatar* a = m.server.terrain_avatar(s.id());
+      ASSERT_NE(a, nullptr);
+      EXPECT_LT(glm::length(body->pelvis_m - a->body.pelvis_m), 0.1f);
+      EXPECT_GT(body->pelvis_m.y, 0.7f);
+    }
+  }
+  fleet.disconnect_all();
+}
+
+TEST(TerrainBots, TheGraphCanStillBeForcedOnTheTerrainScene) {
+  TerrainMatch m(1, server::Locomotion::kGraph);
+  EXPECT_FALSE(m.server.terrain_mode());
+  bots::BotFleet fleet(m.server.library(), m.config);
+  m.play(fleet, 30 * 3);
+  ASSERT_EQ(m.server.avatar_ids().size(), 1u + static_cast<size_t>(m.server.num_fighters()));
+  EXPECT_NE(m.server.avatar(m.server.avatar_ids().back()), nullptr);
+  fleet.disconnect_all();
+}
+
+}  // namespace
+}  // namespace foresight
