@@ -1,6 +1,7 @@
 #include "avatar_decode.hpp"
 
 #include "protocol/avatar_state.hpp"
+#include "protocol/protocol.hpp"
 
 namespace foresight::client {
 
@@ -17,6 +18,7 @@ int avatar_entries_from_wire(const MotionLibrary& library, std::span<const wire:
   out.clear();
   int rejected = 0;
   for (const auto& a : avatars) {
+    if (a.flags() & protocol::kAvatarTerrain) continue;  // drawn from its TerrainBody (terrain_poses.hpp)
     AvatarEntry e;
     if (avatar_entry_from_wire(library, a, e)) out.push_back(e);
     else ++rejected;

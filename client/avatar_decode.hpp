@@ -12,8 +12,9 @@ namespace foresight::client {
 /// False when `state` names a segment, frame or transition outside `library`.
 bool avatar_entry_from_wire(const MotionLibrary& library, const wire::AvatarState& state,
                             AvatarEntry& out);
-/// Every valid avatar of `avatars` into `out` (cleared first; no allocation once large enough).
-/// Returns how many were rejected.
+/// Every valid avatar of `avatars` into `out` (cleared first; no allocation once large enough),
+/// terrain avatars left out (their bodies come apart: terrain_poses.hpp). Returns how many were
+/// rejected.
 int avatar_entries_from_wire(const MotionLibrary& library, std::span<const wire::AvatarState> avatars,
                              std::vector<AvatarEntry>& out);
 

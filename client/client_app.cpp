@@ -5,6 +5,7 @@
 #include "client_input.hpp"
 #include "debug_overlay.hpp"
 #include "fighter_poses.hpp"
+#include "terrain_poses.hpp"
 #include "renderer.hpp"
 #include "screenshot.hpp"
 #include "script_input.hpp"
@@ -111,7 +112,8 @@ class Session {
  public:
   Session(GLFWwindow* window, const MotionLibrary& library, const ClientOptions& options)
       : window_(window), library_(library), options_(options), connection_(connection_config()),
-        buffer_(buffer_config(options)), morphologies_(default_morphologies()),
+        buffer_(buffer_config(options)), morphologies_(with_default(default_morphologies())),
+        terrain_(morphologies_.back(), static_cast<uint8_t>(morphologies_.size() - 1)),
         strikes_(strike_config(options)) {
     tree_overlay_ = options.tree_overlay;
     if (options.follow_camera) rig_.toggle_follow();
@@ -141,6 +143,10 @@ class Session {
     c.show_delay_s = o.delay_s;
     return c;
   }
+  static std::vector<Morphology> with_default(std::vector<Morphology> fighters) {
+    fighters.push_back(default_morphology());  // last: the terrain avatars' skeleton
+    return fighters;
+  }
   static SnapshotBufferConfig buffer_config(const ClientOptions& o) {
     SnapshotBufferConfig c;
     c.delay_s = o.delay_s;
@@ -150,6 +156,7 @@ class Session {
   void on_connected();
   void draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
   void draw_fighters(double t);
+  void draw_terrain_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
   const ShownAvatar* shown_avatar(uint32_t id) const;
   void tree_overlay_step(double t);
 
@@ -158,8 +165,9 @@ class Session {
   const ClientOptions& options_;
   protocol::ClientConnection connection_;
   SnapshotBuffer buffer_;
-  std::vector<Morphology> morphologies_;  ///< default_morphologies(): the fighters' skeletons.
+  std::vector<Morphology> morphologies_;  ///< default_morphologies(): the fighters' skeletons; last the default.
   FighterPoses fighters_;                 ///< Their streamed poses, played with the avatars.
+  TerrainPoses terrain_;                  ///< Terrain avatars' bodies, likewise.
   StrikeFeedback strikes_;                ///< Strike markers, hit flashes, counters.
   CameraRig rig_;
   Renderer renderer_;
@@ -186,6 +194,7 @@ class Session {
   std::vector<ShownAvatar> shown_;
   std::vector<PlaybackState> ghosts_;  ///< Tree overlay scratch: the chosen branch's ghost poses.
   std::vector<FighterPoseSample> shown_fighters_;
+  std::vector<FighterPoseSample> shown_terrain_;
   std::vector<protocol::StrikeEventInfo> strike_events_;
   std::vector<vec3> fighter_local_pos_, fighter_global_pos_;  ///< FK scratch.
   std::vector<quat> fighter_global_rot_;
@@ -222,6 +231,7 @@ void Session::connection_step(Clock::time_point now, double t) {
     reported_down_ = false;
     buffer_.clear();
     fighters_.clear();
+    terrain_.clear();
     strikes_.clear_effects();
     last_parts_ = -1;
     if (!connection_.start(options_.server, library_.content_hash, options_.name, now)) {
@@ -253,6 +263,7 @@ void Session::connection_step(Clock::time_point now, double t) {
     const double server_time_s = static_cast<double>(last_tick_) / connection_.accept().tick_hz;
     buffer_.push(server_time_s, t, entries_);
     fighters_.push(server_time_s, connection_.fighters());
+    terrain_.push(server_time_s, connection_.terrain_bodies());
   }
   strike_events_.clear();
   connection_.take_strike_events(strike_events_);
@@ -314,6 +325,24 @@ void Session::draw_fighters(double t) {
   });
 }
 
+// Terrain avatars from their streamed bodies on the default skeleton, coloured as the others.
+void Session::draw_terrain_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen) {
+  terrain_.sample(buffer_.render_time(t), shown_terrain_);
+  const uint32_t own_id = connection_.accept().avatar;
+  const Morphology& m = morphologies_.back();
+  for (const FighterPoseSample& a : shown_terrain_) {
+    if (!fighter_joint_positions(morphologies_, a, fighter_local_pos_, fighter_global_pos_, fighter_global_rot_))
+      continue;
+    const bool own = a.avatar == own_id;
+    renderer_.add_skeleton(m.skeleton.parents, fighter_global_pos_, own ? kOwnColour : kOtherColour, 1.0f);
+    if (own) {
+      own_pos = ground(a.pelvis_m);
+      own_heading = heading_of(a.local_rot[0] * vec3(0.0f, 0.0f, 1.0f));
+      own_seen = true;
+    }
+  }
+}
+
 // Key T (edge-triggered, polled) toggles the overlay; while on, the tree is asked for every
 // kTreeRequestIntervalS and the newest summary drawn (tree_overlay.hpp).
 void Session::tree_overlay_step(double t) {
@@ -348,6 +377,7 @@ bool Session::frame(int& status) {
   bool own_seen = false;
   draw_avatars(t, own_pos, own_heading, own_seen);
   draw_fighters(t);
+  draw_terrain_avatars(t, own_pos, own_heading, own_seen);
   tree_overlay_step(t);
   rig_.update(own_pos, own_heading, dt);
   if (connection_.connected()) {

@@ -81,10 +81,19 @@ FighterPoses::Track* FighterPoses::find_or_add(uint32_t avatar) {
 }
 
 void FighterPoses::push(double server_time_s, std::span<const protocol::FighterPoseState> fighters) {
+  push_entries(server_time_s, fighters, from_wire);
+}
+
+void FighterPoses::push(double server_time_s, std::span<const FighterPoseSample> poses) {
+  push_entries(server_time_s, poses, [](const FighterPoseSample& p, FighterPoseSample& out) { out = p; });
+}
+
+template <class Entry, class Fill>
+void FighterPoses::push_entries(double server_time_s, std::span<const Entry> entries, Fill fill) {
   if (!has_time_ || server_time_s > newest_time_s_) newest_time_s_ = server_time_s;
   has_time_ = true;
   const int cap = config_.samples_per_fighter;
-  for (const protocol::FighterPoseState& f : fighters) {
+  for (const Entry& f : entries) {
     Track* t = find_or_add(f.avatar);
     if (t == nullptr) continue;
     int slot;
@@ -106,7 +115,7 @@ void FighterPoses::push(double server_time_s, std::span<const protocol::FighterP
       t->count = 1;
     }
     t->time_s[static_cast<size_t>(slot)] = server_time_s;
-    from_wire(f, t->samples[static_cast<size_t>(slot)]);
+    fill(f, t->samples[static_cast<size_t>(slot)]);
   }
   // Fighters absent for a while are gone.
   std::erase_if(order_, [this](size_t i) {

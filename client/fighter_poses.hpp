@@ -1,5 +1,5 @@
 #pragma once
-// NPC fighters' streamed poses (docs/CLIENT.md "Fighters"): each snapshot carries every fighter's
+// Streamed poses: NPC fighters' (and terrain avatars', client_app.cpp) (docs/CLIENT.md "Fighters"): each snapshot carries every fighter's
 // pose on its morphology's skeleton (pelvis position plus quantised local joint rotations,
 // ClientConnection::fighters()). FighterPoses keeps a short history per fighter, stamped with the
 // snapshot's server time, and plays it back at the same render time as the avatars' snapshot
@@ -42,6 +42,8 @@ class FighterPoses {
   /// Adds the fighters of the snapshot taken at server time `server_time_s`. A time already held
   /// for a fighter replaces that sample (later parts of the same tick); an older one is ignored.
   void push(double server_time_s, std::span<const protocol::FighterPoseState> fighters);
+  /// The same for poses already dequantised (terrain bodies mapped onto the default skeleton).
+  void push(double server_time_s, std::span<const FighterPoseSample> poses);
   /// Forgets everything (a new session).
   void clear();
 
@@ -54,6 +56,8 @@ class FighterPoses {
   const FighterPosesConfig& config() const { return config_; }
 
  private:
+  template <class Entry, class Fill>
+  void push_entries(double server_time_s, std::span<const Entry> entries, Fill fill);
   struct Track {
     bool live = false;
     uint32_t avatar = 0;

@@ -208,8 +208,12 @@ void Renderer::set_scene(const Scene& scene) {
   for (int iz = 0; iz < hf.count_z; ++iz) {
     for (int ix = 0; ix < hf.count_x; ++ix) {
       const float h = hf.heights_m[static_cast<size_t>(iz * hf.count_x + ix)];
-      if (std::isnan(h)) continue;  // a hole: nothing to draw (the floor shows through darker)
       const vec2 lo = hf.origin_m + hf.cell_m * vec2(static_cast<float>(ix), static_cast<float>(iz));
+      if (std::isnan(h)) {  // a hole: a dark pit over the floor plane (which lies under everything)
+        static_.push_back({box_matrix(from_ground(lo, floor_y - 0.05f), from_ground(lo + vec2(hf.cell_m), floor_y + 0.002f)),
+                           glm::vec4(0.08f, 0.08f, 0.10f, 1.0f)});
+        continue;
+      }
       static_.push_back({box_matrix(from_ground(lo, std::min(h, floor_y) - 0.06f),
                                     from_ground(lo + vec2(hf.cell_m), h)),
                          glm::vec4(0.70f, 0.72f, 0.64f, 2.0f)});

@@ -76,6 +76,8 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   players_.reserve(static_cast<size_t>(config_.max_players));
   tree_players_.reserve(players_.capacity() + 256);  // + fighters
   terrain_neighbours_.reserve(players_.capacity());
+  snapshot_terrain_.reserve(players_.capacity());
+  terrain_before_.reserve(players_.capacity() + 257);  // players, fighters, one past
   started_ = Clock::now();
   if (!spawn_fighters(error)) return false;
   std::fprintf(stderr,

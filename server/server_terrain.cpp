@@ -80,12 +80,11 @@ void Server::collect_terrain_body(const Player& p) {
   const auto angles = terrain::terrain_body_angles(b);
   std::array<int16_t, terrain::kTerrainBodyAngles> q;
   for (size_t i = 0; i < q.size(); ++i) q[i] = quantize_terrain_angle(angles[i]);
-  wire::TerrainBody& out = snapshot_terrain_.emplace_back(
+  snapshot_terrain_.emplace_back(
       p.avatar_id, protocol::quantize_mm(b.pelvis_m.x), protocol::quantize_mm(b.pelvis_m.y),
       protocol::quantize_mm(b.pelvis_m.z), heading, static_cast<uint8_t>(a.last_status),
       static_cast<uint8_t>((a.stepping ? protocol::kTerrainWalking : 0) | (a.pivoting ? protocol::kTerrainPivoting : 0)),
       flatbuffers::span<const int16_t, 16>(q));
-  (void)out;
 }
 
 }  // namespace foresight::server

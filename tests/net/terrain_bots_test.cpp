@@ -93,6 +93,36 @@ TEST(TerrainBots, SnapshotsCarryEveryTerrainBodyWithItsAvatar) {
   fleet.disconnect_all();
 }
 
+TEST(TerrainServer, ARawClientSteersItsTerrainAvatarInCameraSpaceAndGetsNoTree) {
+  server::Server server;
+  std::string error;
+  ASSERT_TRUE(server.start(test::test_server_config("terrain"), error)) << error;
+  server::Clock::time_point now = server::Clock::now();
+  test::RawClient c(server.port());
+  ASSERT_TRUE(c.connect(server, now, server.library().content_hash));
+  const terrain::TerrainAvatar* a = server.terrain_avatar(c.avatar);
+  ASSERT_NE(a, nullptr);
+  const vec2 start = terrain::terrain_avatar_ground(*a);
+  // The camera looks along +X (yaw 90 degrees): "forward" on screen is +X in the world.
+  uint32_t seq = 1;
+  for (int i = 0; i < 90; ++i) {
+    c.send_input(vec2(0.0f, 1.0f), seq++, kPi / 2);
+    server.run_tick(now += 33ms);
+  }
+  const vec2 walked = terrain::terrain_avatar_ground(*a) - start;
+  EXPECT_GT(walked.x, 1.5f) << "3 s steered forward along the camera's +X";
+  EXPECT_LT(std::abs(walked.y), 0.3f);
+  // A tree request from a terrain player is ignored (no tree), the session and the tick go on.
+  c.receive_all();
+  c.send(protocol::write_tree_request(c.writer_, c.session));
+  server.run_tick(now += 33ms);
+  EXPECT_FALSE(c.receive(wire::Message::TreeSummary).has_value());
+  c.send_input(vec2(0.0f), seq++, kPi / 2);
+  for (int i = 0; i < 30; ++i) server.run_tick(now += 33ms);
+  EXPECT_EQ(server.num_players(), 1);
+  EXPECT_FALSE(a->stepping) << "stopped on a zero direction";
+}
+
 TEST(TerrainBots, TheGraphCanStillBeForcedOnTheTerrainScene) {
   TerrainMatch m(1, server::Locomotion::kGraph);
   EXPECT_FALSE(m.server.terrain_mode());
