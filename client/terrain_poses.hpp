@@ -1,5 +1,5 @@
 #pragma once
-// Terrain avatars' bodies (schema TerrainBody: pelvis, heading, 16 angles) as poses of the default
+// Terrain avatars' bodies (schema TerrainBody: pelvis, heading, 18 angles) as poses of the default
 // skeleton (shared/terrain/terrain_body.hpp), in the form the streamed-pose buffer plays back
 // (FighterPoses: history per avatar, slerped between snapshots), so they are drawn like fighters.
 #include "fighter_poses.hpp"

@@ -84,7 +84,7 @@ void Server::collect_terrain_body(const Player& p) {
       p.avatar_id, protocol::quantize_mm(b.pelvis_m.x), protocol::quantize_mm(b.pelvis_m.y),
       protocol::quantize_mm(b.pelvis_m.z), heading, static_cast<uint8_t>(a.last_status),
       static_cast<uint8_t>((a.stepping ? protocol::kTerrainWalking : 0) | (a.pivoting ? protocol::kTerrainPivoting : 0)),
-      flatbuffers::span<const int16_t, 16>(q));
+      flatbuffers::span<const int16_t, terrain::kTerrainBodyAngles>(q));
 }
 
 }  // namespace foresight::server

@@ -115,7 +115,7 @@ struct FighterPoseState {
   std::array<uint32_t, kMaxFighterJoints> rotations{};
 };
 
-/// A terrain avatar's body from a snapshot (schema TerrainBody), dequantised: the 16 angles in
+/// A terrain avatar's body from a snapshot (schema TerrainBody), dequantised: the 18 angles in
 /// terrain_body_angles() order (shared/terrain/terrain_body.hpp turns them into a pose).
 struct TerrainBodyState {
   uint32_t avatar = 0;
@@ -123,7 +123,7 @@ struct TerrainBodyState {
   float heading_rad = 0.0f;
   uint8_t status = 0;  ///< TerrainStepStatus of its last plan.
   uint8_t flags = 0;   ///< TerrainBodyFlags.
-  std::array<float, 16> angles_rad{};
+  std::array<float, 18> angles_rad{};
 };
 
 /// A strike's outcome (schema StrikeEventState), decoded.

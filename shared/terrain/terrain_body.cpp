@@ -9,28 +9,25 @@ namespace {
 quat about_x(float a) { return glm::angleAxis(a, vec3(1.0f, 0.0f, 0.0f)); }
 quat about_y(float a) { return glm::angleAxis(a, vec3(0.0f, 1.0f, 0.0f)); }
 quat about_z(float a) { return glm::angleAxis(a, vec3(0.0f, 0.0f, 1.0f)); }
-
-LegPose lerp_leg(const LegPose& a, const LegPose& b, float t) {
-  return {a.hip_rad + (b.hip_rad - a.hip_rad) * t, a.knee_rad + (b.knee_rad - a.knee_rad) * t,
-          a.ankle_rad + (b.ankle_rad - a.ankle_rad) * t};
-}
-
 }  // namespace
 
 std::array<float, kTerrainBodyAngles> terrain_body_angles(const TerrainBodyPose& b) {
   const UpperBodyConfig& u = b.upper;
-  return {b.legs[0].hip_rad, b.legs[0].knee_rad, b.legs[0].ankle_rad,
-          b.legs[1].hip_rad, b.legs[1].knee_rad, b.legs[1].ankle_rad,
+  return {b.legs[0].hip_rad, b.hip_yaw_rad[0], b.legs[0].knee_rad, b.legs[0].ankle_rad,
+          b.legs[1].hip_rad, b.hip_yaw_rad[1], b.legs[1].knee_rad, b.legs[1].ankle_rad,
           u.waist[0],        u.waist[1],
-          u.arms[0][0],      u.arms[0][1],         u.arms[0][2],         u.arms[0][3],
-          u.arms[1][0],      u.arms[1][1],         u.arms[1][2],         u.arms[1][3]};
+          u.arms[0][0],      u.arms[0][1],     u.arms[0][2],         u.arms[0][3],
+          u.arms[1][0],      u.arms[1][1],     u.arms[1][2],         u.arms[1][3]};
 }
 
 void terrain_body_set_angles(TerrainBodyPose& b, const std::array<float, kTerrainBodyAngles>& a) {
-  for (size_t leg = 0; leg < 2; ++leg) b.legs[leg] = {a[leg * 3], a[leg * 3 + 1], a[leg * 3 + 2]};
-  b.upper.waist = {a[6], a[7], 0.0f, 0.0f};
+  for (size_t leg = 0; leg < 2; ++leg) {
+    b.legs[leg] = {a[leg * 4], a[leg * 4 + 2], a[leg * 4 + 3]};
+    b.hip_yaw_rad[leg] = a[leg * 4 + 1];
+  }
+  b.upper.waist = {a[8], a[9], 0.0f, 0.0f};
   for (size_t arm = 0; arm < 2; ++arm)
-    for (size_t i = 0; i < 4; ++i) b.upper.arms[arm][i] = a[8 + arm * 4 + i];
+    for (size_t i = 0; i < 4; ++i) b.upper.arms[arm][i] = a[10 + arm * 4 + i];
 }
 
 TerrainBodyPose terrain_body_at(const WalkStep& step, const WalkParams& walk, const GroundPath& path, float phase,
@@ -40,8 +37,11 @@ TerrainBodyPose terrain_body_at(const WalkStep& step, const WalkParams& walk, co
   TerrainBodyPose b;
   b.pelvis_m = from_ground(ground_path_point(path, w.pelvis_m.x), w.pelvis_m.y);
   b.heading_rad = ground_path_heading(path, w.pelvis_m.x);
-  b.legs[swing_left ? 0 : 1] = w.swing;
-  b.legs[swing_left ? 1 : 0] = w.stance;
+  const size_t swing = swing_left ? 0 : 1, stance = 1 - swing;
+  b.legs[swing] = w.swing;
+  b.legs[stance] = w.stance;
+  b.hip_yaw_rad[swing] = wrap_angle(ground_path_heading(path, w.swing_ankle_m.x) - b.heading_rad);
+  b.hip_yaw_rad[stance] = wrap_angle(ground_path_heading(path, w.stance_ankle_m.x) - b.heading_rad);
   b.upper = upper;
   return b;
 }
@@ -62,7 +62,6 @@ TerrainBodyPose terrain_body_lerp(const TerrainBodyPose& a, const TerrainBodyPos
   TerrainBodyPose out;
   out.pelvis_m = glm::mix(a.pelvis_m, b.pelvis_m, t);
   out.heading_rad = wrap_angle(a.heading_rad + wrap_angle(b.heading_rad - a.heading_rad) * t);
-  for (size_t leg = 0; leg < 2; ++leg) out.legs[leg] = lerp_leg(a.legs[leg], b.legs[leg], t);
   const auto x = terrain_body_angles(a), y = terrain_body_angles(b);
   std::array<float, kTerrainBodyAngles> mixed;
   for (size_t i = 0; i < mixed.size(); ++i) mixed[i] = x[i] + (y[i] - x[i]) * t;
@@ -106,7 +105,7 @@ void terrain_body_to_pose(const TerrainBodyPose& b, const Skeleton& s, const Ter
     // Sagittal legs (procedural_walk.cpp): the thigh hip_rad forward of straight down, the shin
     // knee_rad back from the thigh, the foot ankle_rad toes-up from square to the shin.
     const LegPose& leg = b.legs[side];
-    rot(j.up_leg[side]) = about_x(-leg.hip_rad);
+    rot(j.up_leg[side]) = about_y(b.hip_yaw_rad[side]) * about_x(-leg.hip_rad);
     rot(j.leg[side]) = about_x(leg.knee_rad);
     rot(j.foot[side]) = about_x(-leg.ankle_rad);
   }

@@ -102,6 +102,40 @@ TEST(TerrainBody, LegsMatchTheProceduralWalkAlongAWalk) {
   EXPECT_GT(highest_ankle, 0.15f + walk.ankle_height_m - 0.01f) << "the walk never stood on the block";
 }
 
+TEST(TerrainBody, OnACurvedPathEachFootFacesThePathWhereItStands) {
+  // The hip's second DOF: along an arc (radius 2.5 m) the pelvis turns while a planted foot keeps
+  // the heading of the path at its foothold, and the feet stay near the arc.
+  Fk fk;
+  Scene scene;
+  scene.bounds = {{-20.0f, -20.0f}, {20.0f, 20.0f}};
+  auto walker = std::make_unique<TerrainWalker>();
+  ASSERT_TRUE(terrain_walker_init(*walker, TerrainWalkerConfig{}));
+  const GroundPath path = ground_path_from_velocity({0.0f, 0.0f}, 0.0f, 1.0f, 0.4f);
+  ASSERT_TRUE(terrain_walker_start(*walker, scene, path, 9.0f));
+  const WalkParams& walk = walker->config.footsteps.walk;
+  float largest_yaw = 0.0f;
+  while (terrain_walker_travelled_m(*walker) < 4.0f) {
+    ASSERT_EQ(terrain_walker_step(*walker, scene), TerrainStepStatus::kOk);
+    const bool swing_left = !walker->swing_left;
+    for (int k = 0; k <= 8; ++k) {
+      const float phase = static_cast<float>(k) / 8.0f;
+      const TerrainBodyPose body = terrain_body_at(walker->plan.steps[0], walk, path, phase, swing_left, UpperBodyConfig{});
+      fk.run(body);
+      WalkFrame w;
+      walk_step_sample(walker->plan.steps[0], walk, phase, w);
+      const char* stance_foot = swing_left ? "RightFoot" : "LeftFoot";
+      const char* stance_toe = swing_left ? "RightToeBase" : "LeftToeBase";
+      const float foot_heading = heading_of(fk.at(stance_toe) - fk.at(stance_foot));
+      EXPECT_NEAR(wrap_angle(foot_heading - ground_path_heading(path, w.stance_ankle_m.x)), 0.0f, 0.02f) << phase;
+      // The ankle 9 cm beside the path's point at its distance (the arc bends under it).
+      const float off = glm::length(ground(fk.at(stance_foot)) - ground_path_point(path, w.stance_ankle_m.x));
+      EXPECT_NEAR(off, 0.09f, 0.03f) << phase;
+      largest_yaw = std::max(largest_yaw, std::abs(body.hip_yaw_rad[swing_left ? 1 : 0]));
+    }
+  }
+  EXPECT_GT(largest_yaw, 0.05f) << "the pelvis turned away from the planted foot";
+}
+
 TEST(TerrainBody, AnglesRoundTripAndLerpEnds) {
   TerrainBodyPose a;
   std::array<float, kTerrainBodyAngles> angles;
