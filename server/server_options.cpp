@@ -1,0 +1,86 @@
+#include "server_options.hpp"
+
+#include "library/motion_source_cli.hpp"
+
+#include <sstream>
+
+namespace foresight::server {
+
+void add_server_options(CLI::App& app, ServerCommandLine& out) {
+  ServerConfig& c = out.config;
+  app.set_config("--config", "", "TOML file with any of these options (key = value; the command line wins)");
+  app.allow_config_extras(false);  // a misspelt key is an error, not silently ignored
+  app.add_option("--write-config", out.write_config,
+                 "Write every option with its value to this file (a config to start from) and exit")
+      ->configurable(false);
+  app.add_option("--scene", c.scene, "Scene name (data/scenes/<name>.json) or path")->capture_default_str();
+  app.add_option("--bind", c.bind_address, "Address to bind")->capture_default_str();
+  app.add_option("--port", c.port, "UDP port (0: any free port)")->capture_default_str();
+  app.add_option("--tick-hz", c.tick_hz, "Simulation ticks per second")->check(CLI::Range(1, 240))->capture_default_str();
+  app.add_option("--snapshot-hz", c.snapshot_hz, "Snapshots per second (at most the tick rate)")
+      ->check(CLI::Range(1, 240))->capture_default_str();
+  app.add_option("--max-players", c.max_players, "Players at most")->check(CLI::Range(1, 65535))->capture_default_str();
+  app.add_option("--timeout-s", c.session_timeout_s, "Drop a client silent this long")
+      ->check(CLI::Range(0.1, 3600.0))->capture_default_str();
+  app.add_option("--budget-ms", c.lookahead_budget_ms, "Look-ahead budget per tick at most, ms")
+      ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+  app.add_option("--margin-ms", c.tick_safety_margin_ms, "Tick time kept free of look-ahead, ms")
+      ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+  app.add_option("--expansions", c.expansions_per_avatar,
+                 "Deterministic mode: expansions per avatar per tick instead of a time budget (0: time)")
+      ->check(CLI::Range(int64_t{0}, int64_t{10000000}))->capture_default_str();
+  app.add_option("--threads", c.threads, "Look-ahead threads, the tick thread included (0: one per core)")
+      ->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--status-every-s", c.status_every_s, "Log a status line this often (0: never)")
+      ->check(CLI::Range(0.0, 86400.0))->capture_default_str();
+  app.add_option("--strategy", out.strategy_name, "Exploration strategy: " + strategy_names())->capture_default_str();
+  app.add_option("--tree-nodes", c.tree_max_nodes, "Tree node cap per avatar")->check(CLI::Range(16, 1 << 20))->capture_default_str();
+  app.add_option("--resort-ticks", c.resort_interval_ticks,
+                 "Re-prioritise trees at least every N ticks (also on command change and before decisions)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--tree-depth", c.tree_max_depth, "Tree depth cap")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--max-packets-per-s", c.max_packets_per_s, "Per-session packet rate limit")
+      ->check(CLI::Range(1, 100000))->capture_default_str();
+  app.add_option("--locomotion", out.locomotion_name,
+                 "How players move: graph (motion tree), terrain (footstep planner; no fighters), auto (terrain "
+                 "when the scene has terrain)")
+      ->transform(CLI::IsMember({"auto", "graph", "terrain"}, CLI::ignore_case))
+      ->capture_default_str();
+  app.add_option("--fighters", c.fighters,
+                 "NPC fighters (-1: one per NPC spawn of the scene; N: that many)")
+      ->check(CLI::Range(-1, 256))
+      ->capture_default_str();
+  app.add_flag("--fighters-supervised", out.supervised, "Fighters strike only when ordered (no own policy)");
+  app.add_option("--fighter-cooldown-s", c.fighter_cooldown_s, "Fighters' own policy: seconds between strikes")
+      ->check(CLI::Range(0.0, 600.0))
+      ->capture_default_str();
+  app.add_option("--fighter-strikes", c.fighter_strikes, "Extra BVH folder of strikes for the fighters");
+  app.add_option("--fighter-strikes-sidecar", c.fighter_strikes_sidecar,
+                 "Annotations of that folder (default: its strikes.json, else automatic splitting)");
+  app.add_option("--fighter-cache", c.fighter_cache_dir, "Folder caching the fighters' pose clusters");
+  app.add_flag("--console", out.console,
+               "Read supervisor commands from stdin (fighters, order <id|all> punch|kick|any, auto on|off, help)");
+  app.add_option("--seconds", out.seconds, "Stop after this long (0: run until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+  add_motion_source_options(app, c.motions);
+}
+
+std::string server_config_text(const CLI::App& app) {
+  // Options without a value (no --motions folder, detected BVH units) stay commented out: an
+  // empty value read back would mean "this folder" or "no unit".
+  std::string out = "# foresight-server configuration: foresight-server --config FILE (command-line options win)\n";
+  std::istringstream lines(app.config_to_str(true, true));
+  for (std::string line; std::getline(lines, line);) {
+    const bool empty_value = line.size() > 3 && line.compare(line.size() - 3, 3, "=\"\"") == 0;
+    out += (empty_value ? "# " : "") + line + "\n";
+  }
+  return out;
+}
+
+bool finish_server_options(ServerCommandLine& out, std::string& error) {
+  out.config.fighters_auto_attack = !out.supervised;
+  const std::string& l = out.locomotion_name;
+  out.config.locomotion = l == "graph" ? Locomotion::kGraph : l == "terrain" ? Locomotion::kTerrain : Locomotion::kAuto;
+  return strategy_parse(out.strategy_name, out.config.strategy, error);
+}
+
+}  // namespace foresight::server

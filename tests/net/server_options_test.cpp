@@ -1,0 +1,97 @@
+// The server's configuration (docs/SERVER.md "Configuration"): a TOML file sets any option, the
+// command line wins, mistakes are reported (unknown key, bad value, missing file), and the file
+// --write-config writes reads back to the same configuration.
+#include "server_options.hpp"
+
+#include "io/text_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+
+namespace foresight::server {
+namespace {
+
+struct Parsed {
+  std::unique_ptr<CLI::App> app = std::make_unique<CLI::App>("test");
+  ServerCommandLine cli;
+  std::string error;  ///< Parse or finish error; empty on success.
+};
+
+std::unique_ptr<Parsed> parse(std::vector<std::string> args) {
+  auto p = std::make_unique<Parsed>();
+  add_server_options(*p->app, p->cli);
+  std::vector<const char*> argv{"foresight-server"};
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  try {
+    p->app->parse(static_cast<int>(argv.size()), argv.data());
+    finish_server_options(p->cli, p->error);
+  } catch (const CLI::ParseError& e) {
+    p->error = e.what();
+  }
+  return p;
+}
+
+std::filesystem::path write_file(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("foresight-options-" + name);
+  std::string error;
+  EXPECT_TRUE(file_write_atomic(path, text, error)) << error;
+  return path;
+}
+
+TEST(ServerOptions, TheFileSetsOptionsAndTheCommandLineWins) {
+  const auto file = write_file("a.toml", "tick-hz = 20\nbudget-ms = 3.5\nstrategy = \"statistic\"\n"
+                                         "locomotion = \"terrain\"\nmax-players = 64\n");
+  const auto p = parse({"--config", file.string(), "--tick-hz", "60"});
+  ASSERT_TRUE(p->error.empty()) << p->error;
+  const ServerConfig& c = p->cli.config;
+  EXPECT_EQ(c.tick_hz, 60);  // the command line
+  EXPECT_DOUBLE_EQ(c.lookahead_budget_ms, 3.5);
+  EXPECT_EQ(c.strategy, Strategy::kStatistic);
+  EXPECT_EQ(c.locomotion, Locomotion::kTerrain);
+  EXPECT_EQ(c.max_players, 64);
+  EXPECT_EQ(c.snapshot_hz, ServerConfig{}.snapshot_hz);  // untouched: the default
+}
+
+TEST(ServerOptions, MistakesInTheFileAreReported) {
+  EXPECT_NE(parse({"--config", write_file("b.toml", "tick-hz = 30\nbugdet-ms = 4\n").string()})->error.find("bugdet"),
+            std::string::npos);
+  EXPECT_FALSE(parse({"--config", write_file("c.toml", "tick-hz = \"fast\"\n").string()})->error.empty());
+  EXPECT_FALSE(parse({"--config", write_file("d.toml", "tick-hz = 100000\n").string()})->error.empty());
+  EXPECT_FALSE(parse({"--config", write_file("e.toml", "strategy = \"greedy\"\n").string()})->error.empty());
+  EXPECT_FALSE(parse({"--config", "/nonexistent/foresight.toml"})->error.empty());
+}
+
+TEST(ServerOptions, TheWrittenConfigReadsBackToTheSameConfiguration) {
+  const auto first = parse({"--tick-hz", "45", "--strategy", "hybrid", "--budget-ms", "2.25", "--scene", "arena",
+                            "--fighters", "3", "--locomotion", "GRAPH"});
+  ASSERT_TRUE(first->error.empty()) << first->error;
+  const std::string text = server_config_text(*first->app);
+  EXPECT_NE(text.find("# Look-ahead budget per tick"), std::string::npos) << "each option is explained";
+  const auto again = parse({"--config", write_file("f.toml", text).string()});
+  ASSERT_TRUE(again->error.empty()) << again->error << "\n" << text;
+  const ServerConfig& a = first->cli.config;
+  const ServerConfig& b = again->cli.config;
+  EXPECT_EQ(b.tick_hz, 45);
+  EXPECT_EQ(b.strategy, Strategy::kHybrid);
+  EXPECT_EQ(b.locomotion, Locomotion::kGraph);
+  EXPECT_DOUBLE_EQ(b.lookahead_budget_ms, 2.25);
+  EXPECT_EQ(b.scene, "arena");
+  EXPECT_EQ(b.fighters, 3);
+  EXPECT_EQ(b.port, a.port);
+  EXPECT_EQ(b.max_packets_per_s, a.max_packets_per_s);
+  EXPECT_EQ(b.tree_max_nodes, a.tree_max_nodes);
+  EXPECT_EQ(b.motions.motions_dir, a.motions.motions_dir);
+}
+
+TEST(ServerOptions, HelpListsTheOptionsWithTheirDefaults) {
+  const auto p = parse({});
+  const std::string help = p->app->help();
+  for (const char* s : {"--config", "--write-config", "--budget-ms", "--tick-hz", "--locomotion", "--strategy"})
+    EXPECT_NE(help.find(s), std::string::npos) << s;
+  EXPECT_NE(help.find("=30"), std::string::npos) << "the tick rate's default";
+}
+
+}  // namespace
+}  // namespace foresight::server
