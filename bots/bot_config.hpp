@@ -34,6 +34,12 @@ struct BotFleetConfig {
   double stats_wait_s = 1.0;          ///< How long the end waits for the ServerStats answer.
   /// Two avatars whose roots are closer than this count as a contact.
   float contact_distance_m = 0.3f;
+  /// A bot whose server went away (shut down, or silent) connects again after a back-off that
+  /// doubles from reconnect_first_s up to reconnect_max_s (each bot's delay jittered by +-25 %,
+  /// so a restarted server is not hit by every bot at once). false: it stays gone.
+  bool reconnect = true;
+  double reconnect_first_s = 0.5;
+  double reconnect_max_s = 8.0;
 };
 
 }  // namespace foresight::bots

@@ -112,6 +112,19 @@ void BotFleet::frame(TimePoint now) {
     ++next_to_start_;
   }
 
+  // Reconnect: bots whose server went away try again once their back-off is over (a restart
+  // keeps the socket, so its epoll registration stays).
+  for (int i = 0; i < next_to_start_; ++i) {
+    Bot& bot = *bots_[static_cast<size_t>(i)];
+    if (!bot.reconnect_pending || now < bot.reconnect_at) continue;
+    bot.reconnect_pending = false;
+    ++bot.reconnects;
+    if (bot.conn.start(config_.server, library_.content_hash, config_.name_prefix + std::to_string(i), now))
+      bot.last_state = bot.conn.state();
+    else
+      log_once(bot.conn.status_message());
+  }
+
   int plans_left = config_.plans_per_frame;
   int observer = -1;
   for (int i = 0; i < next_to_start_; ++i) {
@@ -195,14 +208,24 @@ void BotFleet::on_state_change(Bot& bot, int index, TimePoint now) {
     case ClientState::kTimedOut:
     case ClientState::kServerGone:
       log_once(bot.conn.status_message());
+      if (bot.accepted && config_.reconnect) schedule_reconnect(bot, index, now);
       break;
     default:
       break;
   }
 }
 
+void BotFleet::schedule_reconnect(Bot& bot, int index, TimePoint now) {
+  bot.backoff_s = bot.backoff_s <= 0 ? config_.reconnect_first_s : std::min(2 * bot.backoff_s, config_.reconnect_max_s);
+  // Jitter from the bot's own seed: deterministic, and different per bot.
+  const double jitter = 0.75 + 0.5 * static_cast<double>(bot_seed(config_.seed, index + bot.reconnects) % 1000) / 1000.0;
+  bot.reconnect_at = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(bot.backoff_s * jitter));
+  bot.reconnect_pending = true;
+}
+
 void BotFleet::on_accept(Bot& bot, int index) {
   bot.accepted = true;
+  bot.backoff_s = 0;  // a session again: the next loss starts the back-off afresh
   bot.brain.reset(config_.script, bot_seed(config_.seed, index), 1.0 / config_.rate_hz);
   if (world_.loaded) {
     if (bot.conn.accept().scene != world_.scene_name) {
@@ -248,7 +271,8 @@ void BotFleet::disconnect_all() {
 
 bool BotFleet::all_finished() const {
   if (next_to_start_ < size()) return false;
-  return std::all_of(bots_.begin(), bots_.end(), [](const auto& b) { return finished(b->conn.state()); });
+  return std::all_of(bots_.begin(), bots_.end(),
+                     [](const auto& b) { return finished(b->conn.state()) && !b->reconnect_pending; });
 }
 
 int BotFleet::connected_now() const {
@@ -302,6 +326,7 @@ BotReport BotFleet::report(TimePoint now) const {
     r.refused += c.state() == ClientState::kRefused;
     r.timed_out += c.state() == ClientState::kTimedOut;
     r.server_gone += c.state() == ClientState::kServerGone;
+    r.reconnects += b->reconnects;
     r.goals_reached += b->brain.targets_reached();
     r.walked_m_mean += b->brain.walked_m();
     r.targets_given_up += b->brain.targets_given_up();

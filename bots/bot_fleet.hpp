@@ -76,10 +76,15 @@ class BotFleet {
     bool accepted = false;  ///< Ever.
     protocol::ClientState last_state = protocol::ClientState::kClosed;
     TimePoint session_end{};  ///< When it left kConnected (for its kbps).
+    bool reconnect_pending = false;
+    TimePoint reconnect_at{};
+    double backoff_s = 0;     ///< The next wait (0: the first is reconnect_first_s).
+    int reconnects = 0;       ///< Handshakes started again after losing the server.
   };
 
   void on_state_change(Bot& bot, int index, TimePoint now);
   void on_accept(Bot& bot, int index);
+  void schedule_reconnect(Bot& bot, int index, TimePoint now);
   void log_once(const std::string& line);
 
   const MotionLibrary& library_;

@@ -23,6 +23,7 @@ void bot_report_print(const BotReport& r, std::ostream& out) {
       << fixed(r.seconds) << " s)\n";
   out << "  connected " << r.connected << ", at the end " << r.connected_at_end << ", refused "
       << r.refused << ", handshake timed out " << r.timed_out << ", server gone " << r.server_gone
+      << ", reconnects " << r.reconnects
       << "\n";
   for (const std::string& why : r.refusals) out << "  refusal: " << why << "\n";
   if (!r.error.empty()) out << "  error: " << r.error << "\n";
@@ -77,6 +78,7 @@ nlohmann::json bot_report_json(const BotReport& r) {
   j["refused"] = r.refused;
   j["timed_out"] = r.timed_out;
   j["server_gone"] = r.server_gone;
+  j["reconnects"] = r.reconnects;
   j["refusals"] = r.refusals;
   if (!r.error.empty()) j["error"] = r.error;
   j["goals_reached"] = r.goals_reached;

@@ -25,6 +25,7 @@ struct BotReport {
   int refused = 0;
   int timed_out = 0;    ///< Handshake unanswered.
   int server_gone = 0;  ///< Connected, then the server fell silent or ended the session.
+  int reconnects = 0;   ///< Handshakes started again after that (BotFleetConfig::reconnect).
   std::vector<std::string> refusals;  ///< Distinct refusal messages (at most a few).
   std::string error;                  ///< Why the run stopped early (scene or recording missing).
 

@@ -1,35 +1,46 @@
 #pragma once
-// The supervisor's commands (paper 3.5: a supervisor orders the fighter to punch or kick), typed
-// on the server's console (`foresight-server --console`) until the admin endpoint of issue 8:
+// The supervisor's and the admin's commands (Server::admin_command), typed on the server's console
+// (`foresight-server --console`) or posted to the admin endpoint (POST /command, admin_http.hpp):
 //   fighters                      list the fighters: id, morphology, phase, target, strikes
-//   order <id|all> punch|kick|any order a strike at the target's head as it is now
+//   order <id|all> punch|kick|any order a strike at the target's head as it is now (paper 3.5)
 //   auto <on|off>                 the fighters' own policy (strike in reach after a cool-down)
+//   set budget-ms <ms>            look-ahead budget per tick, at most (0-1000)
+//   set margin-ms <ms>            tick time kept free of look-ahead (0-1000)
+//   set strategy <name>           exploration strategy (trees keep their root and regrow)
+//   set resort-ticks <n>          re-prioritise trees at least every n ticks (1-1000)
 //   help
-// Lines are queued from the console thread (post) and run on the tick thread (Server::run_tick),
-// so a command never races the simulation.
+// Lines are queued from any thread (post) and run on the tick thread at the start of the next
+// tick (Server::run_tick), so a command never races the simulation; the reply goes to the
+// poster's callback, or to stdout when it gave none.
+#include <functional>
 #include <mutex>
 #include <string>
 #include <vector>
 
 namespace foresight::server {
 
+struct AdminRequest {
+  std::string line;
+  std::function<void(const std::string& reply)> reply;  ///< Called on the tick thread; may be empty.
+};
+
 class AdminQueue {
  public:
   /// Any thread.
-  void post(std::string line) {
+  void post(std::string line, std::function<void(const std::string&)> reply = {}) {
     std::lock_guard<std::mutex> lock(mutex_);
-    lines_.push_back(std::move(line));
+    requests_.push_back({std::move(line), std::move(reply)});
   }
-  /// The tick thread: moves the waiting lines into `out` (cleared first).
-  void take(std::vector<std::string>& out) {
+  /// The tick thread: moves the waiting requests into `out` (cleared first).
+  void take(std::vector<AdminRequest>& out) {
     out.clear();
     std::lock_guard<std::mutex> lock(mutex_);
-    out.swap(lines_);
+    out.swap(requests_);
   }
 
  private:
   std::mutex mutex_;
-  std::vector<std::string> lines_;
+  std::vector<AdminRequest> requests_;
 };
 
 }  // namespace foresight::server

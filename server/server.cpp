@@ -80,6 +80,21 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   terrain_before_.reserve(players_.capacity() + 257);  // players, fighters, one past
   started_ = Clock::now();
   if (!spawn_fighters(error)) return false;
+  if (config_.admin_port >= 0) {
+    admin_token_ = config_.admin_token.empty() ? admin_random_token() : config_.admin_token;
+    admin_state_ = std::make_shared<AdminState>();
+    publish_admin(Clock::now());
+    admin_ = std::make_unique<AdminEndpoint>(admin_state_, admin_queue_, admin_token_);
+    std::string admin_error;
+    if (!admin_->start(config_.admin_bind, config_.admin_port, admin_error)) {
+      // The game runs without it (another server may hold the port); the operator is told.
+      std::fprintf(stderr, "foresight-server: %s; running without it\n", admin_error.c_str());
+      admin_.reset();
+    } else {
+      std::fprintf(stderr, "foresight-server: admin endpoint http://%s:%d/?token=%s (/metrics, /status, /command)\n",
+                   config_.admin_bind.c_str(), admin_->port(), config_.admin_token.empty() ? admin_token_.c_str() : "<yours>");
+    }
+  }
   std::fprintf(stderr,
                "foresight-server: scene %s, library %s (%d segments, hash %016llx), UDP %s:%u, "
                "%d Hz ticks, %d Hz snapshots, %d look-ahead thread(s), strategy %d, %s locomotion\n",
@@ -120,6 +135,18 @@ void Server::run() {
     if (next < now - period) next = now;  // far behind (debugger, suspend): do not spiral
     std::this_thread::sleep_until(next);
   }
+  close_sessions();
+}
+
+void Server::close_sessions() {
+  for (size_t i = players_.size(); i-- > 0;) {
+    if (players_[i]->is_fighter()) continue;
+    for (int copy = 0; copy < 2; ++copy)
+      send_refuse(players_[i]->endpoint, wire::RefuseReason::ShuttingDown, "the server is shutting down");
+    ++counters_.sessions_closed;
+    remove_player(i);
+  }
+  join_queue_.clear();
 }
 
 void Server::run_tick(Clock::time_point now) {
@@ -131,9 +158,16 @@ void Server::run_tick(Clock::time_point now) {
   receive(now);
   admit_joins(now);
   expire(now);
-  admin_queue_->take(admin_lines_);
-  for (const std::string& line : admin_lines_) std::printf("%s\n", admin_command(line).c_str());
-  if (!admin_lines_.empty()) std::fflush(stdout);
+  admin_queue_->take(admin_requests_);
+  for (const AdminRequest& r : admin_requests_) {
+    const std::string reply = admin_command(r.line);
+    if (r.reply) {
+      r.reply(reply);
+    } else {
+      std::printf("%s\n", reply.c_str());
+      std::fflush(stdout);
+    }
+  }
   think_fighters(now);
   const Clock::time_point received = Clock::now();
   record.receive_ms = static_cast<float>(ms_between(tick_start, received));
@@ -160,8 +194,48 @@ void Server::run_tick(Clock::time_point now) {
                  tick_, record.tick_ms, record.receive_ms, record.lookahead_ms, record.budget_ms, record.advance_ms,
                  record.send_ms, record.players, static_cast<unsigned long long>(stats_.overruns()));
   }
+  if (admin_) publish_admin(Clock::now());
   const auto status_ticks = static_cast<uint32_t>(config_.status_every_s * config_.tick_hz);
   if (status_ticks > 0 && tick_ % status_ticks == 0) log_status();
+}
+
+void Server::publish_admin(Clock::time_point now) {
+  const ServerCounters& c = counters_;
+  std::lock_guard<std::mutex> lock(admin_state_->mutex);
+  AdminMetrics& m = admin_state_->metrics;
+  m.tick = tick_;
+  m.uptime_s = std::chrono::duration<double>(now - started_).count();
+  m.tick_hz = config_.tick_hz;
+  m.snapshot_hz = config_.snapshot_hz;
+  m.players = num_players();
+  m.max_players = config_.max_players;
+  m.fighters = num_fighters_;
+  m.joins_waiting = static_cast<int>(join_queue_.size());
+  if (m.scene.empty()) m.scene = scene_.name;  // once: no allocation per tick
+  m.locomotion = terrain_mode_ ? "terrain" : "graph";
+  m.strategy = strategy_name(config_.strategy);
+  m.budget_limit_ms = config_.lookahead_budget_ms;
+  m.margin_ms = config_.tick_safety_margin_ms;
+  m.tick_buckets = stats_.buckets();
+  m.ticks = stats_.ticks();
+  m.overruns = stats_.overruns();
+  m.tick_ms_sum = stats_.tick_ms_sum();
+  m.tick_ms_p50 = stats_.tick_ms_percentile(50);
+  m.tick_ms_p99 = stats_.tick_ms_percentile(99);
+  m.tick_ms_max = stats_.tick_ms_max();
+  m.last = stats_.last();
+  m.mean = stats_.mean();
+  m.expansions_total = stats_.expansions_total();
+  m.packets_in = c.packets_in, m.bytes_in = c.bytes_in, m.packets_out = c.packets_out, m.bytes_out = c.bytes_out;
+  m.send_failures = c.send_failures;
+  m.sessions_opened = c.sessions_opened, m.sessions_timed_out = c.sessions_timed_out;
+  m.sessions_closed = c.sessions_closed, m.refused = c.refused;
+  m.challenges_sent = c.challenges_sent, m.challenges_capped = c.challenges_capped, m.joins_deferred = c.joins_deferred;
+  m.avatar_contacts = c.avatar_contacts, m.fallbacks = c.fallbacks;
+  m.fighter_strikes = c.fighter_strikes, m.fighter_hits = c.fighter_hits;
+  m.terrain_steps = c.terrain_steps, m.terrain_pivots = c.terrain_pivots, m.terrain_refusals = c.terrain_refusals;
+  std::copy(c.drops.by_reason.begin(), c.drops.by_reason.end(), m.drops.begin());
+  m.published = std::chrono::steady_clock::now();
 }
 
 void Server::log_status() const {
@@ -421,7 +495,7 @@ void Server::send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason
   auto& fbb = writer_.begin();
   const auto text = fbb.CreateString(message);
   send(writer_.finish(wire::CreateRefuse(fbb, reason, text, library_.content_hash)), to);
-  ++counters_.refused;
+  if (reason != wire::RefuseReason::ShuttingDown) ++counters_.refused;
 }
 
 void Server::send_accept(const Player& p) {

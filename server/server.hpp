@@ -18,6 +18,7 @@
 #include "lookahead/reservations.hpp"
 #include "terrain/terrain_avatar.hpp"
 #include "admin_commands.hpp"
+#include "admin_http.hpp"
 #include "fighters/fighter_assets.hpp"
 #include "fighters/fighter_npc.hpp"
 #include "lookahead_workers.hpp"
@@ -82,7 +83,12 @@ class Server {
   /// Ticks at tick_hz until stop() (from any thread or a signal handler).
   void run();
   void stop() { stop_requested_.store(true); }
+  /// Graceful shutdown: tells every client (Refuse ShuttingDown, sent twice against a loss) and
+  /// closes its session. run() does it when stopped; a client then knows at once instead of
+  /// after its timeout, and bots reconnect with back-off.
+  void close_sessions();
 
+  /// The configuration in effect (with the admin's run-time changes: set budget-ms, ...).
   const ServerConfig& config() const { return config_; }
   const MotionLibrary& library() const { return library_; }
   const Scene& scene() const { return scene_; }
@@ -107,6 +113,9 @@ class Server {
   /// Where any thread (the console) queues commands; they run at the start of the next tick and
   /// their replies go to stdout. Shared, so a console thread can outlive the server safely.
   std::shared_ptr<AdminQueue> admin_queue() const { return admin_queue_; }
+  /// The admin endpoint's TCP port, or -1 when it is not running.
+  int admin_port() const { return admin_ ? admin_->port() : -1; }
+  const std::string& admin_token() const { return admin_token_; }
   /// The fighters' shared data (database, morphologies), or nullptr without fighters.
   const FighterAssets* fighter_assets() const { return fighter_assets_.get(); }
   /// A fighter's body as last animated (what the next snapshot sends), or nullptr.
@@ -159,6 +168,8 @@ class Server {
   void advance_terrain(TickRecord& record);
   void collect_terrain_body(const Player& p);
   void log_status() const;
+  void publish_admin(Clock::time_point now);
+  std::string admin_set(const std::string& key, const std::string& value);
   bool find_spawn(Placement& out) const;
   bool find_free_place(std::span<const Placement> around, Placement& out) const;
   Player* find_player(const protocol::Endpoint& from);
@@ -224,7 +235,10 @@ class Server {
   std::unique_ptr<FighterRetriever> fighter_retriever_;
   std::deque<StrikeEvent> strike_events_;
   std::shared_ptr<AdminQueue> admin_queue_ = std::make_shared<AdminQueue>();
-  std::vector<std::string> admin_lines_;
+  std::vector<AdminRequest> admin_requests_;
+  std::shared_ptr<AdminState> admin_state_;
+  std::unique_ptr<AdminEndpoint> admin_;  ///< Last member: its threads stop before the rest goes.
+  std::string admin_token_;
   uint32_t next_strike_event_ = 1;
   double snapshot_accumulator_ = 0;
   uint32_t snapshot_tick_ = 0;

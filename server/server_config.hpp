@@ -48,6 +48,10 @@ struct ServerConfig {
   /// costs about a millisecond); verified joins beyond it wait in a queue, first come first served.
   int max_joins_per_tick = 4;
   MotionSource motions;            ///< Default library, or --motions DIR.
+  // The admin endpoint (admin_http.hpp): loopback unless told otherwise, behind a token.
+  std::string admin_bind = "127.0.0.1";
+  int admin_port = 7778;           ///< -1: no endpoint; 0: any free port.
+  std::string admin_token;         ///< Empty: a random one, printed at start.
   Locomotion locomotion = Locomotion::kAuto;
   /// NPC fighters (issue 6): -1 = one per NPC spawn of the scene; N >= 0 = that many (beyond the
   /// scene's NPC spawns they start at its player spawns: load tests).

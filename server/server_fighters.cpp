@@ -75,55 +75,6 @@ bool Server::spawn_fighters(std::string& error) {
   return true;
 }
 
-std::string Server::admin_command(const std::string& line) {
-  std::istringstream in(line);
-  std::string verb, who, what;
-  in >> verb >> who >> what;
-  if (verb.empty()) return "";
-  if (verb == "help")
-    return "commands: fighters | order <id|all> punch|kick|any | auto on|off | help";
-  if (verb == "fighters") {
-    std::string out = std::to_string(num_fighters_) + " fighters";
-    static const char* phases[] = {"rest", "follow", "strike", "recover"};
-    for (const auto& f : players_) {
-      if (!f->is_fighter()) continue;
-      const FighterNpc& n = *f->fighter;
-      out += "\n  " + std::to_string(f->avatar_id) + " " + n.name + " (" +
-             morphology_specs()[static_cast<size_t>(n.morphology)].name + "): " +
-             phases[static_cast<int>(n.brain.phase())] + ", target " +
-             (n.target_id != 0 ? std::to_string(n.target_id) : std::string("none"));
-    }
-    out += "\n  strikes " + std::to_string(counters_.fighter_strikes) + ", hits " + std::to_string(counters_.fighter_hits);
-    return out;
-  }
-  if (verb == "auto") {
-    if (who != "on" && who != "off") return "usage: auto on|off";
-    for (const auto& f : players_)
-      if (f->is_fighter()) f->fighter->brain.set_auto_attack(who == "on");
-    return std::string("fighters' own policy ") + (who == "on" ? "on" : "off");
-  }
-  if (verb == "order") {
-    StrikeOrder order = StrikeOrder::kNone;
-    if (what == "punch") order = StrikeOrder::kPunch;
-    if (what == "kick") order = StrikeOrder::kKick;
-    if (what == "any") order = StrikeOrder::kAny;
-    if (who.empty() || order == StrikeOrder::kNone) return "usage: order <id|all> punch|kick|any";
-    std::vector<uint32_t> ids = fighter_ids();
-    if (who != "all") {
-      char* end = nullptr;
-      const unsigned long id = std::strtoul(who.c_str(), &end, 10);
-      if (end == who.c_str() || *end != '\0' || std::find(ids.begin(), ids.end(), id) == ids.end())
-        return "no fighter '" + who + "' (see: fighters)";
-      ids = {static_cast<uint32_t>(id)};
-    }
-    int ordered = 0;
-    for (uint32_t id : ids) ordered += order_fighter(id, order) ? 1 : 0;
-    return "ordered " + what + " to " + std::to_string(ordered) + " of " + std::to_string(ids.size()) +
-           " fighter(s) (a fighter without a player near has no target)";
-  }
-  return "unknown command '" + verb + "' (help lists them)";
-}
-
 const PoseBuffers* Server::fighter_pose(uint32_t avatar_id) const {
   for (const auto& f : players_)
     if (f->is_fighter() && f->avatar_id == avatar_id) return &f->fighter->motion.pose();

@@ -61,6 +61,11 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
   app.add_flag("--console", out.console,
                "Read supervisor commands from stdin (fighters, order <id|all> punch|kick|any, auto on|off, help)");
   app.add_option("--seconds", out.seconds, "Stop after this long (0: run until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+  app.add_option("--admin-bind", c.admin_bind, "Admin endpoint address (loopback by default)")->capture_default_str();
+  app.add_option("--admin-port", c.admin_port, "Admin endpoint TCP port (-1: none; 0: any free port)")
+      ->check(CLI::Range(-1, 65535))
+      ->capture_default_str();
+  app.add_option("--admin-token", c.admin_token, "Admin token (empty: a random one, printed at start)");
   add_motion_source_options(app, c.motions);
 }
 

@@ -11,6 +11,10 @@ void TickStats::record(const TickRecord& r, bool overrun) {
   count_ = std::min(count_ + 1, kWindow);
   ++ticks_;
   if (overrun) ++overruns_;
+  for (size_t i = 0; i < kBucketsMs.size(); ++i)
+    if (r.tick_ms <= kBucketsMs[i]) ++buckets_[i];
+  tick_ms_sum_ += r.tick_ms;
+  expansions_total_ += r.expansions;
 }
 
 float TickStats::tick_ms_percentile(double p) const {

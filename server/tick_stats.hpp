@@ -2,6 +2,7 @@
 // Per-tick figures the server keeps (docs/SERVER.md): a window of recent ticks for percentiles,
 // and totals. Fixed-size ring: recording a tick never allocates.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace foresight::server {
@@ -24,13 +25,21 @@ struct TickRecord {
 class TickStats {
  public:
   static constexpr int kWindow = 1024;  ///< About 34 s at 30 Hz.
+  /// Upper bounds (ms) of the tick-time histogram's buckets, kept since the start (Prometheus).
+  static constexpr std::array<double, 10> kBucketsMs{0.5, 1, 2, 4, 8, 16, 25, 33.3, 50, 100};
   void record(const TickRecord& r, bool overrun);
   /// Percentile (0..100) of tick_ms over the window; 0 when empty.
   float tick_ms_percentile(double p) const;
   float tick_ms_max() const;
+  /// The tick recorded last (a zero record before the first).
+  const TickRecord& last() const { return ring_[static_cast<size_t>((next_ + kWindow - 1) % kWindow)]; }
   /// Means over the window.
   TickRecord mean() const;
   uint64_t ticks() const { return ticks_; }
+  /// Ticks with tick_ms at most kBucketsMs[i], since the start (cumulative, as Prometheus wants).
+  const std::array<uint64_t, kBucketsMs.size()>& buckets() const { return buckets_; }
+  double tick_ms_sum() const { return tick_ms_sum_; }
+  int64_t expansions_total() const { return expansions_total_; }
   uint64_t overruns() const { return overruns_; }
 
  private:
@@ -39,6 +48,9 @@ class TickStats {
   int count_ = 0;
   uint64_t ticks_ = 0;
   uint64_t overruns_ = 0;
+  std::array<uint64_t, kBucketsMs.size()> buckets_{};
+  double tick_ms_sum_ = 0;
+  int64_t expansions_total_ = 0;
 };
 
 }  // namespace foresight::server

@@ -122,6 +122,14 @@ class MotionTree {
   /// the avatar crouches where it can and stands where it must.
   void set_command(vec2 world_direction, const Placement& avatar, bool crouch = false);
 
+  /// Switches the exploration strategy at run time: the tree keeps its root (the segment playing)
+  /// and regrows under the new priorities.
+  void set_strategy(Strategy strategy) {
+    const MotionTreeNode root = nodes_[static_cast<size_t>(root_)];
+    config_.strategy = strategy;
+    reset(root.segment, root.start, root.transition);
+  }
+
   /// Strategy 3 and 4 priorities (learned elsewhere). Without them both fall back to uniform.
   void set_statistics(TransitionStatistics statistics) { statistics_ = std::move(statistics); }
 

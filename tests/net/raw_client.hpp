@@ -108,6 +108,7 @@ inline server::ServerConfig test_server_config(const std::string& scene) {
   c.threads = 1;
   c.status_every_s = 0;
   c.fighters = 0;  // the scene's NPC fighters only where a test asks for them
+  c.admin_port = -1;  // the admin endpoint only where a test asks for it (admin_test.cpp)
   return c;
 }
 

@@ -1,0 +1,183 @@
+// The admin endpoint (server/admin_http.hpp) over real HTTP on loopback: the token, the health
+// checks, Prometheus metrics and status JSON that match the server's own counters, commands that
+// change the running server (budget, strategy), and the live page rendered by headless Chromium.
+#include "raw_client.hpp"
+
+#include "io/text_file.hpp"
+
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <future>
+#include <regex>
+#include <thread>
+
+namespace foresight {
+namespace {
+
+using namespace std::chrono_literals;
+constexpr const char* kToken = "test-token-1234";
+
+struct AdminRun {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  explicit AdminRun(const std::string& scene = "arena", int max_players = 8) {
+    server::ServerConfig c = test::test_server_config(scene);
+    c.admin_port = 0;
+    c.admin_token = kToken;
+    c.max_players = max_players;
+    std::string error;
+    EXPECT_TRUE(server.start(c, error)) << error;
+    EXPECT_GT(server.admin_port(), 0);
+  }
+  void ticks(int n) {
+    for (int i = 0; i < n; ++i) server.run_tick(now += 33ms);
+  }
+  httplib::Client client() const { return httplib::Client("127.0.0.1", server.admin_port()); }
+  httplib::Result get(const std::string& path, const std::string& token = kToken) {
+    auto c = client();
+    return token.empty() ? c.Get(path) : c.Get(path, {{"Authorization", "Bearer " + token}});
+  }
+  /// POSTs a command and keeps ticking until the tick thread (this one) has answered it.
+  httplib::Result command(const std::string& line) {
+    auto reply = std::async(std::launch::async, [this, line] {
+      return client().Post("/command", {{"Authorization", std::string("Bearer ") + kToken}}, line, "text/plain");
+    });
+    while (reply.wait_for(1ms) != std::future_status::ready) ticks(1);
+    return reply.get();
+  }
+};
+
+/// The value of a Prometheus sample line `name value` (or -1).
+double sample(const std::string& text, const std::string& name) {
+  const auto at = text.find("\n" + name + " ");
+  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + name.size() + 2));
+}
+
+TEST(Admin, EveryRouteButTheHealthChecksWantsTheToken) {
+  AdminRun r;
+  r.ticks(3);
+  EXPECT_EQ(r.get("/healthz", "")->status, 200);
+  EXPECT_EQ(r.get("/readyz", "")->status, 200);
+  for (const char* path : {"/metrics", "/status", "/"}) {
+    EXPECT_EQ(r.get(path, "")->status, 401) << path;
+    EXPECT_EQ(r.get(path, "wrong-token-1234")->status, 401) << path;
+    EXPECT_EQ(r.get(path)->status, 200) << path;
+  }
+  EXPECT_EQ(r.get(std::string("/status?token=") + kToken, "")->status, 200);
+  EXPECT_EQ(r.client().Post("/command", "help", "text/plain")->status, 401);
+}
+
+TEST(Admin, MetricsAndStatusAreTheServersOwnFigures) {
+  AdminRun r;
+  test::RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  c.send_raw(std::vector<uint8_t>(40, 0xAB));  // not a Foresight packet: dropped and counted
+  r.ticks(30);
+  const auto res = r.get("/metrics");
+  ASSERT_EQ(res->status, 200);
+  const std::string& m = res->body;
+  EXPECT_NE(res->get_header_value("Content-Type").find("version=0.0.4"), std::string::npos);
+  EXPECT_EQ(sample(m, "foresight_tick_seconds_count"), static_cast<double>(r.server.tick_stats().ticks()));
+  EXPECT_EQ(sample(m, "foresight_tick_seconds_bucket{le=\"+Inf\"}"), static_cast<double>(r.server.tick_stats().ticks()));
+  EXPECT_EQ(sample(m, "foresight_players"), 1.0);
+  EXPECT_EQ(sample(m, "foresight_sessions_opened_total"), 1.0);
+  EXPECT_EQ(sample(m, "foresight_packets_in_total"), static_cast<double>(r.server.counters().packets_in));
+  EXPECT_GT(sample(m, "foresight_expansions_total"), 0.0);
+  EXPECT_GT(sample(m, "foresight_tree_size_mean"), 1.0);
+  // Drops by reason add up to the server's total, and the garbage datagram is among them.
+  double dropped = 0;
+  const std::regex drop_line("foresight_packets_dropped_total\\{reason=\"[a-z_]+\"\\} ([0-9]+)");
+  for (auto it = std::sregex_iterator(m.begin(), m.end(), drop_line); it != std::sregex_iterator(); ++it)
+    dropped += std::stod((*it)[1]);
+  EXPECT_EQ(dropped, static_cast<double>(r.server.counters().drops.total()));
+  EXPECT_GE(dropped, 1.0);
+  // Buckets are cumulative.
+  double previous = 0;
+  const std::regex bucket("foresight_tick_seconds_bucket\\{le=\"[0-9.e+-]+\"\\} ([0-9]+)");
+  for (auto it = std::sregex_iterator(m.begin(), m.end(), bucket); it != std::sregex_iterator(); ++it) {
+    EXPECT_GE(std::stod((*it)[1]), previous);
+    previous = std::stod((*it)[1]);
+  }
+
+  const nlohmann::json s = nlohmann::json::parse(r.get("/status")->body);
+  EXPECT_EQ(s["players"], 1);
+  EXPECT_EQ(s["tick"], r.server.tick());
+  EXPECT_EQ(s["scene"], "arena");
+  EXPECT_EQ(s["config"]["strategy"], "command");
+  EXPECT_GT(s["tree_size_mean"].get<double>(), 1.0);
+}
+
+TEST(Admin, CommandsChangeTheRunningServer) {
+  AdminRun r;
+  test::RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  r.ticks(10);
+  auto res = r.command("set budget-ms 3.5");
+  ASSERT_EQ(res->status, 200);
+  EXPECT_EQ(res->body, "budget-ms 3.5\n");
+  EXPECT_DOUBLE_EQ(r.server.config().lookahead_budget_ms, 3.5);
+  res = r.command("set strategy breadth-first");
+  EXPECT_NE(res->body.find("breadth-first"), std::string::npos) << res->body;
+  EXPECT_EQ(r.server.avatar(c.avatar)->tree().strategy(), Strategy::kBreadthFirst);
+  r.ticks(10);
+  EXPECT_GT(r.server.avatar(c.avatar)->tree().num_nodes(), 1) << "the tree regrew under the new strategy";
+  EXPECT_EQ(nlohmann::json::parse(r.get("/status")->body)["config"]["strategy"], "breadth-first");
+  // Mistakes are answered, not applied.
+  EXPECT_NE(r.command("set budget-ms lots")->body.find("usage"), std::string::npos);
+  EXPECT_NE(r.command("set strategy greedy")->body.find("greedy"), std::string::npos);
+  EXPECT_DOUBLE_EQ(r.server.config().lookahead_budget_ms, 3.5);
+  EXPECT_NE(r.command("launch missiles")->body.find("unknown command"), std::string::npos);
+  EXPECT_EQ(r.command(std::string(300, 'x'))->status, 400);
+  EXPECT_EQ(r.command("")->status, 400);
+}
+
+TEST(Admin, ReadinessSaysFullAndNotTicking) {
+  AdminRun r("arena", 1);
+  r.ticks(2);
+  EXPECT_EQ(r.get("/readyz", "")->status, 200);
+  test::RawClient c(r.server.port());
+  ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
+  r.ticks(2);
+  auto res = r.get("/readyz", "");
+  EXPECT_EQ(res->status, 503);
+  EXPECT_EQ(res->body, "full\n");
+  std::this_thread::sleep_for(1100ms);  // no tick for over a second
+  res = r.get("/readyz", "");
+  EXPECT_EQ(res->status, 503);
+  EXPECT_EQ(res->body, "not ticking\n");
+  EXPECT_EQ(r.get("/healthz", "")->status, 200);  // alive all the same
+}
+
+TEST(Admin, TheLivePagePlotsInHeadlessChromium) {
+  if (std::system("command -v chromium >/dev/null 2>&1") != 0) GTEST_SKIP() << "chromium not installed (scripts/install-deps installs it)";
+  AdminRun r;
+  std::thread ticking([&r] { r.server.run(); });  // real time, 30 Hz
+  const std::string url = "http://127.0.0.1:" + std::to_string(r.server.admin_port()) + "/?token=" + kToken;
+  const std::string out = ::testing::TempDir() + "foresight-admin-page.html";
+  const std::string cmd = "timeout 60 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=3000 "
+                          "--dump-dom '" + url + "' > " + out + " 2>/dev/null";
+  const int rc = std::system(cmd.c_str());
+  r.server.stop();
+  ticking.join();
+  ASSERT_EQ(rc, 0) << cmd;
+  std::string dom, error;
+  ASSERT_TRUE(text_file_read(out, 1 << 20, dom, error)) << error;
+  // The script polled /status (twice a second) and drew every chart from what it got.
+  const std::regex samples("id=\"(tick|budget|tree)-chart\"[^>]*data-samples=\"([0-9]+)\"");
+  int charts = 0;
+  for (auto it = std::sregex_iterator(dom.begin(), dom.end(), samples); it != std::sregex_iterator(); ++it) {
+    EXPECT_GE(std::stoi((*it)[2]), 2) << (*it)[1];
+    ++charts;
+  }
+  EXPECT_EQ(charts, 3) << dom.substr(0, 2000);
+  EXPECT_NE(dom.find("<polyline"), std::string::npos);
+  EXPECT_NE(dom.find("id=\"strategy\">command<"), std::string::npos);
+  EXPECT_NE(dom.find("arena (graph)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace foresight

@@ -1,0 +1,87 @@
+// Graceful shutdown and restart: the server tells every client it is going (they know at once,
+// not after their timeout), and bots reconnect with back-off to the server that comes back on
+// the same port. One fake clock drives both sides.
+#include "bot_fleet.hpp"
+#include "raw_client.hpp"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+namespace foresight {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(Shutdown, ClientsAreToldAndBotsReconnectToTheRestartedServer) {
+  std::string error;
+  server::ServerConfig config = test::test_server_config("arena");
+  auto first = std::make_unique<server::Server>();
+  ASSERT_TRUE(first->start(config, error)) << error;
+  bots::BotFleetConfig fleet_config;
+  ASSERT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(first->port()), fleet_config.server, error));
+  fleet_config.count = 3;
+  fleet_config.script = bots::BotScript::kWander;
+  bots::BotFleet fleet(first->library(), fleet_config);
+  auto now = server::Clock::now();
+  auto play = [&](server::Server* s, int frames) {
+    for (int i = 0; i < frames; ++i) {
+      now += 33ms;
+      if (s) s->run_tick(now);
+      fleet.frame(now);
+    }
+  };
+  play(first.get(), 60);
+  ASSERT_EQ(fleet.connected_now(), 3);
+
+  first->close_sessions();
+  EXPECT_EQ(first->num_players(), 0);
+  EXPECT_EQ(first->counters().sessions_closed, 3u);
+  EXPECT_EQ(first->counters().refused, 0u) << "a farewell is not a refusal";
+  play(first.get(), 2);  // a frame or two, far under the 5 s session timeout
+  EXPECT_EQ(fleet.connected_now(), 0);
+  EXPECT_EQ(fleet.report(now).server_gone, 3);
+
+  // The server is gone for a second, then back on the same port. Back-off: the first retry comes
+  // 0.5 s (+-25 %) after the loss, not at once (a restarted server is not stormed).
+  const uint16_t port = first->port();
+  first.reset();
+  play(nullptr, 8);  // 0.33 s after the loss
+  EXPECT_EQ(fleet.report(now).reconnects, 0);
+  play(nullptr, 20);  // 1 s
+  EXPECT_EQ(fleet.report(now).reconnects, 3) << "each bot tried once, and is still trying";
+  config.port = port;
+  server::Server second;
+  ASSERT_TRUE(second.start(config, error)) << error;
+  int frames = 0;
+  while (fleet.connected_now() < 3 && frames < 30 * 20) {
+    play(&second, 1);
+    ++frames;
+  }
+  EXPECT_EQ(fleet.connected_now(), 3) << "not all back after " << frames << " frames";
+  EXPECT_EQ(second.num_players(), 3);
+  const bots::BotReport r = fleet.report(now);
+  EXPECT_GE(r.reconnects, 3);
+  fleet.disconnect_all();
+}
+
+TEST(Shutdown, ARawClientSeesTheFarewell) {
+  std::string error;
+  server::Server s;
+  ASSERT_TRUE(s.start(test::test_server_config("arena"), error)) << error;
+  auto now = server::Clock::now();
+  test::RawClient c(s.port());
+  ASSERT_TRUE(c.connect(s, now, s.library().content_hash));
+  c.receive_all();
+  s.close_sessions();
+  int farewells = 0;
+  for (auto& d : c.receive_all()) {
+    protocol::DropReason reason;
+    const wire::Packet* p = protocol::packet_read(d, reason);
+    if (p && p->message_as_Refuse() && p->message_as_Refuse()->reason() == wire::RefuseReason::ShuttingDown) ++farewells;
+  }
+  EXPECT_EQ(farewells, 2);
+}
+
+}  // namespace
+}  // namespace foresight
