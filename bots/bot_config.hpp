@@ -1,6 +1,7 @@
 #pragma once
 // What a run of bots does: how many, against which server, driven by which script, for how long.
 // Filled by foresight-bots' command line (main.cpp) or directly by in-process tests.
+#include "protocol/impairment.hpp"
 #include "protocol/udp_socket.hpp"
 
 #include <cstdint>
@@ -38,6 +39,8 @@ struct BotFleetConfig {
   /// doubles from reconnect_first_s up to reconnect_max_s (each bot's delay jittered by +-25 %,
   /// so a restarted server is not hit by every bot at once). false: it stays gone.
   bool reconnect = true;
+  /// Both directions of every bot's link through the impairment layer (each bot its own seed).
+  protocol::ImpairmentConfig impairment;
   double reconnect_first_s = 0.5;
   double reconnect_max_s = 8.0;
 };

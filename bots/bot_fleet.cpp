@@ -39,6 +39,7 @@ std::string config_problem(const BotFleetConfig& c) {
   if (!(c.seconds >= 0 && c.seconds <= 1e6)) return "seconds must be in [0, 1e6]";
   if (c.connects_per_frame < 1 || c.plans_per_frame < 1) return "connects and plans per frame must be >= 1";
   if (!(c.give_up_target_s > 0) || !(c.stats_wait_s >= 0)) return "give-up and stats wait times must be > 0";
+  if (std::string error; !protocol::impairment_valid(c.impairment, error)) return error;
   return {};
 }
 
@@ -79,7 +80,11 @@ BotFleet::BotFleet(const MotionLibrary& library, const BotFleetConfig& config, s
   // Room for every avatar of the server (the observer reads them all) without growing later.
   client.reserve_avatars = static_cast<size_t>(config_.count) + 64;
   bots_.reserve(static_cast<size_t>(config_.count));
-  for (int i = 0; i < config_.count; ++i) bots_.push_back(std::make_unique<Bot>(client));
+  for (int i = 0; i < config_.count; ++i) {
+    client.impairment = config_.impairment;
+    client.impairment.seed = bot_seed(config_.impairment.seed + config_.seed, i);
+    bots_.push_back(std::make_unique<Bot>(client));
+  }
   refusals_.reserve(8);
 }
 

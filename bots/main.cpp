@@ -53,6 +53,15 @@ int main(int argc, char** argv) {
   app.add_option("--rate", config.rate_hz, "Bot frames (Inputs) per second")
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
+  // The network impairment layer (docs/RELIABILITY.md), both directions of every bot's link.
+  protocol::ImpairmentConfig& imp = config.impairment;
+  app.add_option("--loss", imp.loss, "Impairment: share of datagrams lost, each way")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--latency-ms", imp.latency_ms, "Impairment: one-way delay")->check(CLI::Range(0.0, 10000.0));
+  app.add_option("--jitter-ms", imp.jitter_ms, "Impairment: delay varies by up to this")->check(CLI::Range(0.0, 10000.0));
+  app.add_option("--duplicate", imp.duplicate, "Impairment: share of datagrams duplicated")->check(CLI::Range(0.0, 1.0));
+  app.add_option("--reorder", imp.reorder, "Impairment: share of datagrams held back behind later ones")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("!--no-reconnect", config.reconnect, "Bots whose server went away stay gone (no back-off retries)");
   // The same library options as the server: the library's content hash must match its own.
   MotionSource source;
   add_motion_source_options(app, source);

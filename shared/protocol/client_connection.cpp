@@ -57,6 +57,10 @@ ClientConnection::ClientConnection(const ClientConfig& config) : config_(config)
   avatars_.reserve(config_.reserve_avatars);
   fighters_.reserve(16);
   terrain_bodies_.reserve(config_.reserve_avatars);
+  if (config_.impairment.active()) {
+    up_ = std::make_unique<ImpairedQueue>(config_.impairment, 1);
+    down_ = std::make_unique<ImpairedQueue>(config_.impairment, 2);
+  }
   new_strike_events_.reserve(16);
   tree_.end_m.reserve(kMaxTreeSamples);
   tree_.parent.reserve(kMaxTreeSamples);
@@ -68,6 +72,7 @@ ClientConnection::ClientConnection(const ClientConfig& config) : config_(config)
 
 bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std::string name,
                              TimePoint now) {
+  now_ = now;
   if (!socket_.is_open()) {
     std::string error;
     // An IPv6 server needs an IPv6 socket, whatever the configured (IPv4 "any") address.
@@ -87,7 +92,7 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   refuse_ = {};
   held_ = {};
   num_commands_ = 0;
-  sequence_ = ack_input_ = 0;
+  sequence_ = ack_input_ = payload_since_ = 0;
   has_snapshot_ = has_own_avatar_ = false;
   snapshot_parts_seen_.reset();
   avatars_.clear();
@@ -107,6 +112,7 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
 // Receiving.
 
 void ClientConnection::poll(TimePoint now) {
+  now_ = now;
   if (!socket_.is_open()) return;
   for (int i = 0; i < config_.max_datagrams_per_poll; ++i) {
     const ptrdiff_t n = socket_.receive(receive_buffer_, from_);
@@ -116,21 +122,35 @@ void ClientConnection::poll(TimePoint now) {
       drops_.add(DropReason::kUnexpected);
       continue;
     }
-    bytes_received_ += static_cast<uint64_t>(n);
-    ++packets_received_;
     if (static_cast<size_t>(n) > receive_buffer_.size()) {
+      ++packets_received_;
       drops_.add(DropReason::kTooLarge);
       continue;
     }
-    DropReason reason = DropReason::kNone;
-    const wire::Packet* packet =
-        packet_read({receive_buffer_.data(), static_cast<size_t>(n)}, reason);
-    if (packet == nullptr) {
-      drops_.add(reason);
-      continue;
+    const std::span<const uint8_t> datagram(receive_buffer_.data(), static_cast<size_t>(n));
+    if (down_) {
+      down_->push(datagram, now);  // on the (impaired) wire a while longer
+    } else {
+      take_datagram(datagram, now);
     }
-    handle(*packet, now);
   }
+  if (down_) down_->release(now, [this, now](std::span<const uint8_t> d) { take_datagram(d, now); });
+}
+
+void ClientConnection::take_datagram(std::span<const uint8_t> datagram, TimePoint now) {
+  bytes_received_ += datagram.size();
+  ++packets_received_;
+  if (datagram.size() > kMaxDatagramBytes) {
+    drops_.add(DropReason::kTooLarge);
+    return;
+  }
+  DropReason reason = DropReason::kNone;
+  const wire::Packet* packet = packet_read(datagram, reason);
+  if (packet == nullptr) {
+    drops_.add(reason);
+    return;
+  }
+  handle(*packet, now);
 }
 
 void ClientConnection::handle(const wire::Packet& packet, TimePoint now) {
@@ -409,6 +429,23 @@ void ClientConnection::on_tree(const wire::TreeSummary& m) {
 // Sending.
 
 void ClientConnection::flush(TimePoint now) {
+  now_ = now;
+  flush_messages(now);
+  release_sends(now);
+}
+
+void ClientConnection::release_sends(TimePoint now) {
+  if (!up_) return;
+  up_->release(now, [this](std::span<const uint8_t> d) {
+    if (socket_.send(d, server_)) {
+      bytes_sent_ += d.size();
+    } else {
+      ++send_failures_;
+    }
+  });
+}
+
+void ClientConnection::flush_messages(TimePoint now) {
   if (state_ == ClientState::kConnecting) {
     if (now - started_at_ >= config_.handshake_timeout) {
       set_state(ClientState::kTimedOut,
@@ -440,9 +477,10 @@ void ClientConnection::send_handshake(TimePoint now) {
 
 void ClientConnection::send_input(TimePoint now) {
   const wire::InputCommand next = input_command_from(held_, sequence_ + 1);
-  const bool idle = num_commands_ > 0 && is_stop(next) &&
-                    same_payload(next, commands_[static_cast<size_t>(num_commands_ - 1)]) &&
-                    !newer(sequence_, ack_input_);
+  const bool same = num_commands_ > 0 && same_payload(next, commands_[static_cast<size_t>(num_commands_ - 1)]);
+  // Idle once the server has applied "stop" (any command of this run of stops): waiting for the
+  // newest one to be acknowledged would never end when the round trip is longer than a frame.
+  const bool idle = same && is_stop(next) && !newer(payload_since_, ack_input_);
   const uint32_t time_ms = client_time_ms(now);
   if (idle) {
     if (now - last_packet_sent_ >= config_.heartbeat_interval) {
@@ -454,6 +492,7 @@ void ClientConnection::send_input(TimePoint now) {
   }
   if (now - last_input_sent_ < config_.min_input_interval) return;
   ++sequence_;
+  if (!same) payload_since_ = sequence_;
   if (num_commands_ == kInputRedundancy) {
     std::move(commands_.begin() + 1, commands_.end(), commands_.begin());
     --num_commands_;
@@ -488,6 +527,8 @@ void ClientConnection::disconnect() {
   if (state_ == ClientState::kConnected) {
     // Not acknowledged: a few copies make a lost one unlikely to leave a ghost until the timeout.
     for (int i = 0; i < 3; ++i) send(write_disconnect(writer_, accept_.session));
+    // Nobody flushes a closed connection: what is still on the impaired wire goes now.
+    release_sends(TimePoint::max());
   }
   if (state_ == ClientState::kConnected || state_ == ClientState::kConnecting) {
     set_state(ClientState::kClosed, "disconnected");
@@ -495,6 +536,10 @@ void ClientConnection::disconnect() {
 }
 
 void ClientConnection::send(std::span<const uint8_t> datagram) {
+  if (up_) {
+    up_->push(datagram, now_);  // sent by a later flush(), when due
+    return;
+  }
   if (socket_.send(datagram, server_)) {
     bytes_sent_ += datagram.size();
   } else {

@@ -17,6 +17,7 @@
 // a snapshot holds more avatars than ever before), strings are built on state changes only.
 #include "lookahead/control_input.hpp"
 #include "protocol/histogram.hpp"
+#include "protocol/impairment.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/protocol.hpp"
 #include "protocol/udp_socket.hpp"
@@ -24,6 +25,7 @@
 #include <array>
 #include <bitset>
 #include <chrono>
+#include <memory>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -52,6 +54,8 @@ struct ClientConfig {
   size_t reserve_avatars = 256;         ///< Initial capacity of the snapshot's avatar list.
   int max_datagrams_per_poll = 4096;    ///< Bounds one poll() under a flood.
   std::string bind_address = "0.0.0.0";  ///< Local address (becomes "::" for an IPv6 server).
+  /// Both directions of the link through an impairment layer (impairment.hpp); inactive by default.
+  ImpairmentConfig impairment;
 };
 
 struct AcceptInfo {
@@ -240,6 +244,9 @@ class ClientConnection {
   void send_handshake(TimePoint now);
   void send_input(TimePoint now);
   void send(std::span<const uint8_t> datagram);
+  void flush_messages(TimePoint now);
+  void release_sends(TimePoint now);
+  void take_datagram(std::span<const uint8_t> datagram, TimePoint now);
   void remember_send_time(uint32_t client_time_ms, TimePoint at);
   void set_state(ClientState state, std::string message);
   uint32_t client_time_ms(TimePoint now) const;
@@ -271,6 +278,7 @@ class ClientConnection {
   int num_commands_ = 0;
   uint32_t sequence_ = 0;
   uint32_t ack_input_ = 0;
+  uint32_t payload_since_ = 0;  ///< Sequence of the first command holding the current input.
   TimePoint last_input_sent_{};
   TimePoint last_packet_sent_{};
 
@@ -282,6 +290,9 @@ class ClientConnection {
   std::vector<wire::AvatarState> avatars_;
   std::vector<FighterPoseState> fighters_;
   std::vector<TerrainBodyState> terrain_bodies_;
+  // The impairment layer (null when inactive): what we send waits in up_, what arrives in down_.
+  std::unique_ptr<ImpairedQueue> up_, down_;
+  TimePoint now_{};  ///< The latest time given to start / poll / flush (what send() stamps).
   std::vector<StrikeEventInfo> new_strike_events_;
   uint32_t last_strike_sequence_ = 0;
   bool has_own_avatar_ = false;

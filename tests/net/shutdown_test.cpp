@@ -22,7 +22,10 @@ TEST(Shutdown, ClientsAreToldAndBotsReconnectToTheRestartedServer) {
   ASSERT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(first->port()), fleet_config.server, error));
   fleet_config.count = 3;
   fleet_config.script = bots::BotScript::kWander;
-  bots::BotFleet fleet(first->library(), fleet_config);
+  // The bots' own library (the first server's goes with it).
+  MotionLibrary library;
+  ASSERT_TRUE(motion_library_load(config.motions, library, error)) << error;
+  bots::BotFleet fleet(library, fleet_config);
   auto now = server::Clock::now();
   auto play = [&](server::Server* s, int frames) {
     for (int i = 0; i < frames; ++i) {
