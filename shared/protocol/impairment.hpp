@@ -60,7 +60,8 @@ class ImpairedQueue {
   const ImpairmentCounters& counters() const { return counters_; }
 
  private:
-  static constexpr size_t kSlotBytes = kMaxDatagramBytes + 1;
+  /// A datagram's room, a multiple of 16 so every slot is aligned as FlatBuffers reads it.
+  static constexpr size_t kSlotBytes = (kMaxDatagramBytes + 1 + 15) / 16 * 16;
   struct Slot {
     Clock::time_point due{};
     uint64_t order = 0;  ///< Push order: ties release first in, first out.
