@@ -1,9 +1,6 @@
 // Real bots (BotFleet: ClientConnection, scripts, collision watch) against a real server, both
-// in this process over loopback UDP and driven by one fake clock: server tick, then bot frame,
-// 33 ms apart. Deterministic in the server's expansion-budget mode, and minutes of play take
-// seconds.
-#include "bot_fleet.hpp"
-#include "raw_client.hpp"
+// in this process over loopback UDP and driven by one fake clock (bot_match.hpp).
+#include "bot_match.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -15,30 +12,15 @@ namespace {
 
 using namespace std::chrono_literals;
 
-struct Match {
-  server::Server server;
-  server::Clock::time_point now = server::Clock::now();
-  bots::BotFleetConfig config;
+server::ServerConfig match_config(const std::string& scene, const std::filesystem::path& motions) {
+  server::ServerConfig c = test::test_server_config(scene);
+  c.motions.motions_dir = motions;
+  return c;
+}
 
-  explicit Match(const std::string& scene, int bots, bots::BotScript script,
-                 const std::filesystem::path& motions = {}) {
-    std::string error;
-    server::ServerConfig server_config = test::test_server_config(scene);
-    server_config.motions.motions_dir = motions;
-    EXPECT_TRUE(server.start(server_config, error)) << error;
-    EXPECT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(server.port()), config.server, error));
-    config.count = bots;
-    config.script = script;
-    config.seed = 7;
-  }
-  /// `frames` of both: a server tick, then a bot frame, 33 ms apart.
-  void play(bots::BotFleet& fleet, int frames) {
-    for (int i = 0; i < frames; ++i) {
-      now += 33ms;
-      server.run_tick(now);
-      fleet.frame(now);
-    }
-  }
+struct Match : test::BotMatch {
+  Match(const std::string& scene, int bots, bots::BotScript script, const std::filesystem::path& motions = {})
+      : BotMatch(match_config(scene, motions), bots, script) {}
 };
 
 TEST(Bots, GoalSeekersConnectWalkAndNeverCollide) {

@@ -3,8 +3,7 @@
 // their goals without a collision, the newest command always reaches the server (input
 // redundancy: every Input repeats the last commands), and the server's state is what the same
 // commands give without impairment.
-#include "bot_fleet.hpp"
-#include "raw_client.hpp"
+#include "bot_match.hpp"
 
 #include "math/splitmix64.hpp"
 
@@ -22,32 +21,20 @@ protocol::ImpairmentConfig hostile(uint64_t seed) {
 }
 
 TEST(Impairment, GoalSeekersStillArriveWithoutCollisions) {
-  server::Server server;
-  std::string error;
-  ASSERT_TRUE(server.start(test::test_server_config("arena"), error)) << error;
-  bots::BotFleetConfig config;
-  ASSERT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(server.port()), config.server, error));
-  config.count = 4;
-  config.script = bots::BotScript::kGoals;
-  config.seed = 5;
-  config.impairment = hostile(11);
-  bots::BotFleet fleet(server.library(), config);
+  test::BotMatch m(test::test_server_config("arena"), 4, bots::BotScript::kGoals, 5);
+  m.config.impairment = hostile(11);
+  bots::BotFleet fleet(m.server.library(), m.config);
   ASSERT_TRUE(fleet.ok()) << fleet.error();
-  auto now = server::Clock::now();
-  for (int i = 0; i < 30 * 40; ++i) {
-    now += 33ms;
-    server.run_tick(now);
-    fleet.frame(now);
-  }
-  const bots::BotReport r = fleet.report(now);
+  m.play(fleet, 30 * 40);
+  const bots::BotReport r = fleet.report(m.now);
   fleet.disconnect_all();
   EXPECT_EQ(r.connected_at_end, 4);
   EXPECT_GT(r.goals_reached, 0u);
   EXPECT_GT(r.walked_m_mean, 10.0);
   EXPECT_EQ(r.scene_collisions, 0u);
   EXPECT_EQ(r.avatar_contacts, 0u);
-  EXPECT_EQ(server.counters().avatar_contacts, 0u);
-  EXPECT_EQ(server.counters().sessions_timed_out, 0u) << "5 % loss never looks like a dead client";
+  EXPECT_EQ(m.server.counters().avatar_contacts, 0u);
+  EXPECT_EQ(m.server.counters().sessions_timed_out, 0u) << "5 % loss never looks like a dead client";
   // The round trip includes both ways' 50 ms.
   EXPECT_GT(r.rtt_ms.percentile(0.5), 90.0);
 }

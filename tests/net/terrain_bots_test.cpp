@@ -1,8 +1,7 @@
 // Bots walk the terrain scene (issue 7): a real server in terrain locomotion and real bots over
 // loopback UDP, one fake clock. The avatars move by the footstep and upper-body planners, the
 // snapshots carry their bodies (TerrainBody), the bots' watch checks every body against the scene.
-#include "bot_fleet.hpp"
-#include "raw_client.hpp"
+#include "bot_match.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
@@ -12,28 +11,15 @@ namespace {
 
 using namespace std::chrono_literals;
 
-struct TerrainMatch {
-  server::Server server;
-  server::Clock::time_point now = server::Clock::now();
-  bots::BotFleetConfig config;
+server::ServerConfig terrain_config(server::Locomotion locomotion) {
+  server::ServerConfig c = test::test_server_config("terrain");
+  c.locomotion = locomotion;
+  return c;
+}
 
-  explicit TerrainMatch(int bots, server::Locomotion locomotion = server::Locomotion::kAuto) {
-    std::string error;
-    server::ServerConfig server_config = test::test_server_config("terrain");
-    server_config.locomotion = locomotion;
-    EXPECT_TRUE(server.start(server_config, error)) << error;
-    EXPECT_TRUE(protocol::parse_endpoint("127.0.0.1:" + std::to_string(server.port()), config.server, error));
-    config.count = bots;
-    config.script = bots::BotScript::kGoals;
-    config.seed = 3;
-  }
-  void play(bots::BotFleet& fleet, int frames) {
-    for (int i = 0; i < frames; ++i) {
-      now += 33ms;
-      server.run_tick(now);
-      fleet.frame(now);
-    }
-  }
+struct TerrainMatch : test::BotMatch {
+  explicit TerrainMatch(int bots, server::Locomotion locomotion = server::Locomotion::kAuto)
+      : BotMatch(terrain_config(locomotion), bots, bots::BotScript::kGoals, 3) {}
 };
 
 TEST(TerrainBots, GoalSeekersWalkTheTerrainSceneByTheFootstepPlanner) {

@@ -3,6 +3,7 @@
 // scene's gap, bends under its low doorway, stops on "stop", stands (and recovers) in front of a
 // wall, keeps clear of other avatars, and shrugs off a NaN direction; without allocating.
 #include "terrain/terrain_avatar.hpp"
+#include "terrain_test_util.hpp"
 
 #include "anim/author/default_skeleton.hpp"
 #include "anim/fk.hpp"
@@ -27,13 +28,7 @@ const Scene& terrain_scene() {
   return scene;
 }
 
-Scene flat_scene(std::vector<SceneBox> boxes = {}) {
-  Scene scene;
-  scene.name = "flat";
-  scene.bounds = {{-20.0f, -20.0f}, {20.0f, 20.0f}};
-  scene.boxes = std::move(boxes);
-  return scene;
-}
+using test::flat_scene;
 
 vec2 dir_of(float heading) { return {std::sin(heading), std::cos(heading)}; }
 

@@ -3,6 +3,7 @@
 // and for random upper-body configurations, so what the player sees is what was collision-checked.
 #include "terrain/terrain_body.hpp"
 #include "terrain/terrain_walker.hpp"
+#include "terrain_test_util.hpp"
 
 #include "anim/author/default_skeleton.hpp"
 #include "anim/fk.hpp"
@@ -60,18 +61,14 @@ TEST(TerrainBody, ArmsAndHeadMatchTheUpperBodyModel) {
   }
 }
 
-TEST(TerrainBody, LegsMatchTheProceduralWalkAlongAWalk) {
-  Fk fk;
-  Scene scene;
-  scene.bounds = {{-20.0f, -20.0f}, {20.0f, 20.0f}};
-  scene.terrain.steps.push_back({"block", vec3(-1.0f, 0.0f, 2.0f), vec3(1.0f, 0.15f, 3.0f)});
+// Walks `path` for 4 m with the TerrainWalker and calls f(body, walk frame, swing_left, phase) at 9
+// phases of every committed step, the body as the skeleton shows it (fk already run).
+template <class F>
+void walk_sampled(Fk& fk, const Scene& scene, const GroundPath& path, F f) {
   auto walker = std::make_unique<TerrainWalker>();
   ASSERT_TRUE(terrain_walker_init(*walker, TerrainWalkerConfig{}));
-  const GroundPath path{{0.0f, 0.0f}, 0.0f, 0.0f};  // along +Z: forward (0, 0, 1), left +X
   ASSERT_TRUE(terrain_walker_start(*walker, scene, path, 9.0f));
   const WalkParams& walk = walker->config.footsteps.walk;
-  int frames = 0;
-  float highest_ankle = 0.0f;
   while (terrain_walker_travelled_m(*walker) < 4.0f) {
     ASSERT_EQ(terrain_walker_step(*walker, scene), TerrainStepStatus::kOk);
     const bool swing_left = !walker->swing_left;  // the step just committed
@@ -81,58 +78,55 @@ TEST(TerrainBody, LegsMatchTheProceduralWalkAlongAWalk) {
       fk.run(body);
       WalkFrame w;
       walk_step_sample(walker->plan.steps[0], walk, phase, w);
-      // Sagittal (forward = z, up = y) positions of the model; the skeleton's legs hang 9 cm to
-      // each side of the centre line.
-      auto expect_at = [&](const char* joint, vec2 model, float side) {
-        const vec3 got = fk.at(joint);
-        EXPECT_NEAR(got.z, model.x, 1e-4f) << joint << " phase " << phase;
-        EXPECT_NEAR(got.y, model.y, 1e-4f) << joint << " phase " << phase;
-        EXPECT_NEAR(got.x, side * 0.09f, 1e-4f) << joint;
-      };
-      const float swing_side = swing_left ? 1.0f : -1.0f;
-      expect_at(swing_left ? "LeftLeg" : "RightLeg", w.swing_knee_m, swing_side);
-      expect_at(swing_left ? "LeftFoot" : "RightFoot", w.swing_ankle_m, swing_side);
-      expect_at(swing_left ? "RightLeg" : "LeftLeg", w.stance_knee_m, -swing_side);
-      expect_at(swing_left ? "RightFoot" : "LeftFoot", w.stance_ankle_m, -swing_side);
-      highest_ankle = std::max(highest_ankle, w.stance_ankle_m.y);
-      ++frames;
+      f(body, w, swing_left, phase);
     }
   }
+}
+
+TEST(TerrainBody, LegsMatchTheProceduralWalkAlongAWalk) {
+  Fk fk;
+  Scene scene = test::flat_scene();
+  scene.terrain.steps.push_back({"block", vec3(-1.0f, 0.0f, 2.0f), vec3(1.0f, 0.15f, 3.0f)});
+  const GroundPath path{{0.0f, 0.0f}, 0.0f, 0.0f};  // along +Z: forward (0, 0, 1), left +X
+  int frames = 0;
+  float highest_ankle = 0.0f;
+  walk_sampled(fk, scene, path, [&](const TerrainBodyPose&, const WalkFrame& w, bool swing_left, float phase) {
+    // Sagittal (forward = z, up = y) positions of the model; the skeleton's legs hang 9 cm to
+    // each side of the centre line.
+    auto expect_at = [&](const char* joint, vec2 model, float side) {
+      const vec3 got = fk.at(joint);
+      EXPECT_NEAR(got.z, model.x, 1e-4f) << joint << " phase " << phase;
+      EXPECT_NEAR(got.y, model.y, 1e-4f) << joint << " phase " << phase;
+      EXPECT_NEAR(got.x, side * 0.09f, 1e-4f) << joint;
+    };
+    const float swing_side = swing_left ? 1.0f : -1.0f;
+    expect_at(swing_left ? "LeftLeg" : "RightLeg", w.swing_knee_m, swing_side);
+    expect_at(swing_left ? "LeftFoot" : "RightFoot", w.swing_ankle_m, swing_side);
+    expect_at(swing_left ? "RightLeg" : "LeftLeg", w.stance_knee_m, -swing_side);
+    expect_at(swing_left ? "RightFoot" : "LeftFoot", w.stance_ankle_m, -swing_side);
+    highest_ankle = std::max(highest_ankle, w.stance_ankle_m.y);
+    ++frames;
+  });
   EXPECT_GT(frames, 40);
-  EXPECT_GT(highest_ankle, 0.15f + walk.ankle_height_m - 0.01f) << "the walk never stood on the block";
+  EXPECT_GT(highest_ankle, 0.15f + WalkParams{}.ankle_height_m - 0.01f) << "the walk never stood on the block";
 }
 
 TEST(TerrainBody, OnACurvedPathEachFootFacesThePathWhereItStands) {
   // The hip's second DOF: along an arc (radius 2.5 m) the pelvis turns while a planted foot keeps
   // the heading of the path at its foothold, and the feet stay near the arc.
   Fk fk;
-  Scene scene;
-  scene.bounds = {{-20.0f, -20.0f}, {20.0f, 20.0f}};
-  auto walker = std::make_unique<TerrainWalker>();
-  ASSERT_TRUE(terrain_walker_init(*walker, TerrainWalkerConfig{}));
   const GroundPath path = ground_path_from_velocity({0.0f, 0.0f}, 0.0f, 1.0f, 0.4f);
-  ASSERT_TRUE(terrain_walker_start(*walker, scene, path, 9.0f));
-  const WalkParams& walk = walker->config.footsteps.walk;
   float largest_yaw = 0.0f;
-  while (terrain_walker_travelled_m(*walker) < 4.0f) {
-    ASSERT_EQ(terrain_walker_step(*walker, scene), TerrainStepStatus::kOk);
-    const bool swing_left = !walker->swing_left;
-    for (int k = 0; k <= 8; ++k) {
-      const float phase = static_cast<float>(k) / 8.0f;
-      const TerrainBodyPose body = terrain_body_at(walker->plan.steps[0], walk, path, phase, swing_left, UpperBodyConfig{});
-      fk.run(body);
-      WalkFrame w;
-      walk_step_sample(walker->plan.steps[0], walk, phase, w);
-      const char* stance_foot = swing_left ? "RightFoot" : "LeftFoot";
-      const char* stance_toe = swing_left ? "RightToeBase" : "LeftToeBase";
-      const float foot_heading = heading_of(fk.at(stance_toe) - fk.at(stance_foot));
-      EXPECT_NEAR(wrap_angle(foot_heading - ground_path_heading(path, w.stance_ankle_m.x)), 0.0f, 0.02f) << phase;
-      // The ankle 9 cm beside the path's point at its distance (the arc bends under it).
-      const float off = glm::length(ground(fk.at(stance_foot)) - ground_path_point(path, w.stance_ankle_m.x));
-      EXPECT_NEAR(off, 0.09f, 0.03f) << phase;
-      largest_yaw = std::max(largest_yaw, std::abs(body.hip_yaw_rad[swing_left ? 1 : 0]));
-    }
-  }
+  walk_sampled(fk, test::flat_scene(), path, [&](const TerrainBodyPose& body, const WalkFrame& w, bool swing_left, float phase) {
+    const char* stance_foot = swing_left ? "RightFoot" : "LeftFoot";
+    const char* stance_toe = swing_left ? "RightToeBase" : "LeftToeBase";
+    const float foot_heading = heading_of(fk.at(stance_toe) - fk.at(stance_foot));
+    EXPECT_NEAR(wrap_angle(foot_heading - ground_path_heading(path, w.stance_ankle_m.x)), 0.0f, 0.02f) << phase;
+    // The ankle 9 cm beside the path's point at its distance (the arc bends under it).
+    const float off = glm::length(ground(fk.at(stance_foot)) - ground_path_point(path, w.stance_ankle_m.x));
+    EXPECT_NEAR(off, 0.09f, 0.03f) << phase;
+    largest_yaw = std::max(largest_yaw, std::abs(body.hip_yaw_rad[swing_left ? 1 : 0]));
+  });
   EXPECT_GT(largest_yaw, 0.05f) << "the pelvis turned away from the planted foot";
 }
 

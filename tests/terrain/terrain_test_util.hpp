@@ -8,6 +8,15 @@
 
 namespace foresight::terrain::test {
 
+/// 40 m of flat floor at y = 0 (centred on the origin), with `boxes` in it.
+inline Scene flat_scene(std::vector<SceneBox> boxes = {}) {
+  Scene scene;
+  scene.name = "flat";
+  scene.bounds = {{-20.0f, -20.0f}, {20.0f, 20.0f}};
+  scene.boxes = std::move(boxes);
+  return scene;
+}
+
 /// What a walk along a profile did.
 struct WalkLog {
   FootstepStatus last_status = FootstepStatus::kOk;  ///< kOk when the walk reached its goal.

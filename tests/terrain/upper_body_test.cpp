@@ -3,6 +3,7 @@
 // wall, bad input, determinism. The walker (terrain_walker.hpp) runs footsteps and upper body
 // together, as the game does.
 #include "terrain/terrain_walker.hpp"
+#include "terrain_test_util.hpp"
 
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
@@ -17,13 +18,7 @@
 namespace foresight::terrain {
 namespace {
 
-Scene flat_scene(std::vector<SceneBox> boxes = {}) {
-  Scene scene;
-  scene.name = "flat";
-  scene.bounds = {{-20.0f, -20.0f}, {20.0f, 20.0f}};
-  scene.boxes = std::move(boxes);
-  return scene;
-}
+using test::flat_scene;
 
 SceneBox box(vec3 lo, vec3 hi) {
   SceneBox b;
