@@ -384,6 +384,13 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
   if (cookie == nullptr ||
       !cookies_.check({cookie->data(), cookie->size()}, protocol::endpoint_address_bytes(from, storage),
                       from.port(), seconds)) {
+    // The sender's address is unproven: a refusal to it shares the challenges' per-tick budget, so
+    // forged responses cannot make the server a reflector either.
+    if (challenges_this_tick_ >= config_.max_challenges_per_tick) {
+      ++counters_.challenges_capped;
+      return;
+    }
+    ++challenges_this_tick_;
     send_refuse(from, wire::RefuseReason::BadCookie, "connection cookie wrong or expired: connect again");
     return;
   }
