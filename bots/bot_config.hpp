@@ -39,6 +39,9 @@ struct BotFleetConfig {
   /// doubles from reconnect_first_s up to reconnect_max_s (each bot's delay jittered by +-25 %,
   /// so a restarted server is not hit by every bot at once). false: it stays gone.
   bool reconnect = true;
+  /// Churn (soak tests): every churn_every_s one bot (in turn) leaves (Disconnect) and joins again
+  /// as a new session half a second later. 0: none.
+  double churn_every_s = 0;
   /// Both directions of every bot's link through the impairment layer (each bot its own seed).
   protocol::ImpairmentConfig impairment;
   double reconnect_first_s = 0.5;

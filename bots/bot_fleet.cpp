@@ -117,6 +117,24 @@ void BotFleet::frame(TimePoint now) {
     ++next_to_start_;
   }
 
+  // Churn: one connected bot leaves and comes back as a new session.
+  if (config_.churn_every_s > 0 && next_to_start_ == size()) {
+    if (next_churn_ == TimePoint{}) next_churn_ = now + std::chrono::duration_cast<Clock::duration>(
+                                                     std::chrono::duration<double>(config_.churn_every_s));
+    if (now >= next_churn_) {
+      Bot& bot = *bots_[static_cast<size_t>(next_to_churn_)];
+      next_to_churn_ = (next_to_churn_ + 1) % size();
+      next_churn_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.churn_every_s));
+      if (bot.conn.connected()) {
+        bot.conn.disconnect();
+        bot.last_state = bot.conn.state();
+        bot.reconnect_pending = true;
+        bot.reconnect_at = now + std::chrono::milliseconds(500);
+        ++churns_;
+      }
+    }
+  }
+
   // Reconnect: bots whose server went away try again once their back-off is over (a restart
   // keeps the socket, so its epoll registration stays).
   for (int i = 0; i < next_to_start_; ++i) {
@@ -323,6 +341,7 @@ BotReport BotFleet::report(TimePoint now) const {
   std::vector<double> down, up;
   down.reserve(bots_.size());
   up.reserve(bots_.size());
+  r.churns = churns_;
   for (const auto& b : bots_) {
     const auto& c = b->conn;
     if (b->started) r.seconds = std::max(r.seconds, seconds_between(c.started_at(), now));

@@ -97,6 +97,9 @@ class BotFleet {
   int observer_ = -1;  ///< The bot whose view the watch checks.
   int epoll_fd_ = -1;
   int next_to_start_ = 0;
+  int next_to_churn_ = 0;
+  TimePoint next_churn_{};
+  int churns_ = 0;
   std::vector<std::string> refusals_;
   std::vector<std::string> logged_;
   bool has_last_frame_ = false;

@@ -79,6 +79,7 @@ nlohmann::json bot_report_json(const BotReport& r) {
   j["timed_out"] = r.timed_out;
   j["server_gone"] = r.server_gone;
   j["reconnects"] = r.reconnects;
+  j["churns"] = r.churns;
   j["refusals"] = r.refusals;
   if (!r.error.empty()) j["error"] = r.error;
   j["goals_reached"] = r.goals_reached;

@@ -25,7 +25,8 @@ struct BotReport {
   int refused = 0;
   int timed_out = 0;    ///< Handshake unanswered.
   int server_gone = 0;  ///< Connected, then the server fell silent or ended the session.
-  int reconnects = 0;   ///< Handshakes started again after that (BotFleetConfig::reconnect).
+  int reconnects = 0;   ///< Handshakes started again after that (BotFleetConfig::reconnect), or after churn.
+  int churns = 0;       ///< Sessions ended on purpose to join again (BotFleetConfig::churn_every_s).
   std::vector<std::string> refusals;  ///< Distinct refusal messages (at most a few).
   std::string error;                  ///< Why the run stopped early (scene or recording missing).
 

@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
   app.add_option("--duplicate", imp.duplicate, "Impairment: share of datagrams duplicated")->check(CLI::Range(0.0, 1.0));
   app.add_option("--reorder", imp.reorder, "Impairment: share of datagrams held back behind later ones")
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--churn-s", config.churn_every_s, "Soak: every this many seconds one bot leaves and joins again")
+      ->check(CLI::Range(0.0, 3600.0));
   app.add_flag("!--no-reconnect", config.reconnect, "Bots whose server went away stay gone (no back-off retries)");
   // The same library options as the server: the library's content hash must match its own.
   MotionSource source;

@@ -1,8 +1,7 @@
 // Graceful shutdown and restart: the server tells every client it is going (they know at once,
 // not after their timeout), and bots reconnect with back-off to the server that comes back on
 // the same port. One fake clock drives both sides.
-#include "bot_fleet.hpp"
-#include "raw_client.hpp"
+#include "bot_match.hpp"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +83,27 @@ TEST(Shutdown, ARawClientSeesTheFarewell) {
     if (p && p->message_as_Refuse() && p->message_as_Refuse()->reason() == wire::RefuseReason::ShuttingDown) ++farewells;
   }
   EXPECT_EQ(farewells, 2);
+}
+
+}  // namespace
+}  // namespace foresight
+
+namespace foresight {
+namespace {
+
+TEST(Churn, BotsLeaveAndJoinAgainAsNewSessions) {
+  test::BotMatch m(test::test_server_config("arena"), 3, bots::BotScript::kWander);
+  m.config.churn_every_s = 1.0;
+  bots::BotFleet fleet(m.server.library(), m.config);
+  m.play(fleet, 30 * 8);
+  const bots::BotReport r = fleet.report(m.now);
+  EXPECT_GE(r.churns, 6);
+  EXPECT_GE(m.server.counters().sessions_closed, 6u) << "each leave is a clean Disconnect";
+  EXPECT_GE(m.server.counters().sessions_opened, 3u + 6u);
+  EXPECT_EQ(m.server.counters().sessions_timed_out, 0u);
+  EXPECT_GE(fleet.connected_now(), 2) << "at most the one that just left is away";
+  EXPECT_EQ(m.server.num_players(), fleet.connected_now());
+  fleet.disconnect_all();
 }
 
 }  // namespace
