@@ -1,5 +1,7 @@
 #include "snapshot_buffer.hpp"
 
+#include "protocol/protocol.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -149,6 +151,37 @@ void SnapshotBuffer::sample(const MotionLibrary& library, double t, std::vector<
     }
     out.push_back(shown);
   }
+  // Far avatars come every few snapshots: those missing from s0 are shown from their own latest
+  // snapshot at or before t (within far_hold_s) towards their next one.
+  const size_t from_s0 = out.size();
+  for (size_t j = i0; j-- > 0 && at(j).time_s >= t - config_.far_hold_s;) {
+    for (const AvatarEntry& a : at(j).avatars) {
+      if (!(a.flags & protocol::kAvatarFar) || s0.find(a.id) != nullptr) continue;
+      if (std::any_of(out.begin() + static_cast<std::ptrdiff_t>(from_s0), out.end(),
+                      [&](const ShownAvatar& x) { return x.id == a.id; }))
+        continue;  // a newer snapshot held it already
+      ShownAvatar shown;
+      shown.id = a.id;
+      shown.flags = a.flags;
+      const AvatarEntry* b = nullptr;
+      double t1 = 0;
+      for (size_t k = j + 1; k < count_ && !b; ++k) {
+        b = at(k).find(a.id);
+        t1 = at(k).time_s;
+      }
+      if (b != nullptr && t1 > t) {
+        interpolate(library, a.state, b->state, (t - at(j).time_s) / (t1 - at(j).time_s), shown);
+      } else {
+        shown.state = a.state;
+        advance_frames(library, shown.state, shown.frame_alpha,
+                       std::min(t - at(j).time_s, config_.max_extrapolation_s) * segment_fps(library, a.state.segment));
+        shown.extrapolated = true;
+      }
+      out.push_back(shown);
+    }
+  }
+  if (out.size() > from_s0)
+    std::sort(out.begin(), out.end(), [](const ShownAvatar& x, const ShownAvatar& y) { return x.id < y.id; });
 }
 
 }  // namespace foresight::client

@@ -36,6 +36,9 @@ struct SnapshotBufferConfig {
   double delay_s = 0.100;              ///< How far behind the newest snapshot playback runs.
   double max_extrapolation_s = 0.250;  ///< Past the newest snapshot, advance at most this far.
   int capacity = 32;                   ///< Snapshots kept (20 Hz: 1.6 s).
+  /// An avatar flagged kAvatarFar (beyond the server's interest radius: sent every few snapshots)
+  /// stays shown this long after its last snapshot, interpolated to its next one.
+  double far_hold_s = 0.6;
 };
 
 class SnapshotBuffer {

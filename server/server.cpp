@@ -551,8 +551,10 @@ void Server::send_snapshots(Clock::time_point now) {
   snapshot_states_.clear();
   snapshot_terrain_.clear();
   terrain_before_.clear();
+  snapshot_positions_.clear();
   for (const auto& p : players_) {
     terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
+    snapshot_positions_.push_back(p->terrain ? terrain::terrain_avatar_ground(*p->terrain) : p->avatar->root().pos_m);
     if (p->terrain) {
       collect_terrain_body(*p);
       continue;
@@ -573,20 +575,20 @@ void Server::send_snapshots(Clock::time_point now) {
   }
   terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
   collect_fighter_poses();
-  plan_snapshot_parts();
+  const bool interest = config_.interest_radius_m > 0;
+  if (interest) interest_grid_.build(snapshot_positions_, config_.interest_radius_m);
   const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
-  const auto parts = static_cast<uint8_t>(snapshot_parts_.size());
-  for (const auto& p : players_) {
-    if (p->is_fighter()) continue;
+  for (size_t receiver = 0; receiver < players_.size(); ++receiver) {
+    const Player& p = *players_[receiver];
+    if (p.is_fighter()) continue;
+    build_view(receiver, interest);
+    plan_snapshot_parts();
+    const auto parts = static_cast<uint8_t>(snapshot_parts_.size());
     for (size_t part = 0; part < snapshot_parts_.size(); ++part) {
       const SnapshotPart& plan = snapshot_parts_[part];
-      // Mark the receiver's own avatar (flags are per receiver; restore after).
-      for (size_t i = plan.avatars_begin; i < plan.avatars_end; ++i)
-        if (snapshot_states_[i].id() == p->avatar_id)
-          snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() | protocol::kAvatarYours);
       auto& fbb = writer_.begin();
       const auto avatars =
-          fbb.CreateVectorOfStructs(snapshot_states_.data() + plan.avatars_begin, plan.avatars_end - plan.avatars_begin);
+          fbb.CreateVectorOfStructs(view_states_.data() + plan.avatars_begin, plan.avatars_end - plan.avatars_begin);
       flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::FighterPose>>> fighters = 0;
       if (plan.fighters_end > plan.fighters_begin) {
         fighter_offsets_.clear();
@@ -599,25 +601,51 @@ void Server::send_snapshots(Clock::time_point now) {
         fighters = fbb.CreateVector(fighter_offsets_);
       }
       flatbuffers::Offset<flatbuffers::Vector<const wire::TerrainBody*>> terrain_bodies = 0;
-      const uint32_t terrain_begin = terrain_before_[plan.avatars_begin], terrain_end = terrain_before_[plan.avatars_end];
+      const uint32_t terrain_begin = view_terrain_before_[plan.avatars_begin];
+      const uint32_t terrain_end = view_terrain_before_[plan.avatars_end];
       if (terrain_end > terrain_begin)
-        terrain_bodies = fbb.CreateVectorOfStructs(snapshot_terrain_.data() + terrain_begin, terrain_end - terrain_begin);
+        terrain_bodies = fbb.CreateVectorOfStructs(view_terrain_.data() + terrain_begin, terrain_end - terrain_begin);
       flatbuffers::Offset<flatbuffers::Vector<const wire::StrikeEventState*>> events = 0;
       if (plan.events && !snapshot_events_.empty())
         events = fbb.CreateVectorOfStructs(snapshot_events_.data(), snapshot_events_.size());
-      const auto bytes = writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts,
-                                                             p->last_input_seq, p->echo_client_time_ms, server_ms,
-                                                             avatars, fighters, events, terrain_bodies));
-      for (size_t i = plan.avatars_begin; i < plan.avatars_end; ++i)
-        if (snapshot_states_[i].id() == p->avatar_id)
-          snapshot_states_[i].mutate_flags(snapshot_states_[i].flags() & ~protocol::kAvatarYours);
-      send(bytes, p->endpoint);
+      send(writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts, p.last_input_seq,
+                                               p.echo_client_time_ms, server_ms, avatars, fighters, events, terrain_bodies)),
+           p.endpoint);
     }
   }
 }
 
-// Parts under the datagram budget: fighters' poses first, the strike events in part 0, then the
-// avatars. Sizes are upper bounds of what FlatBuffers writes (tables: vtable and alignment).
+// What one client gets (interest.hpp): the avatars near its own every snapshot, the far ones when
+// due (flagged kAvatarFar), its own flagged kAvatarYours; their terrain bodies with them.
+void Server::build_view(size_t receiver, bool interest) {
+  const uint32_t n = static_cast<uint32_t>(snapshot_states_.size());
+  if (interest) {
+    const bool far_due = config_.far_every > 0 &&
+                         (snapshot_tick_ + players_[receiver]->avatar_id) % static_cast<uint32_t>(config_.far_every) == 0;
+    select_interest(interest_grid_, snapshot_positions_, static_cast<uint32_t>(receiver), config_.interest_radius_m,
+                    far_due, view_index_, view_far_);
+  } else {
+    view_index_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) view_index_[i] = i;
+    view_far_.assign(n, 0);
+  }
+  view_states_.clear();
+  view_terrain_.clear();
+  view_terrain_before_.clear();
+  for (uint32_t i : view_index_) {
+    view_terrain_before_.push_back(static_cast<uint32_t>(view_terrain_.size()));
+    wire::AvatarState a = snapshot_states_[i];
+    a.mutate_flags(static_cast<uint8_t>(a.flags() | (i == receiver ? protocol::kAvatarYours : 0) |
+                                        (view_far_[i] ? protocol::kAvatarFar : 0)));
+    view_states_.push_back(a);
+    for (uint32_t t = terrain_before_[i]; t < terrain_before_[i + 1]; ++t) view_terrain_.push_back(snapshot_terrain_[t]);
+  }
+  view_terrain_before_.push_back(static_cast<uint32_t>(view_terrain_.size()));
+}
+
+// Parts of one client's view under the datagram budget: fighters' poses first, the strike events
+// in part 0, then the avatars. Sizes are upper bounds of what FlatBuffers writes (tables: vtable
+// and alignment).
 void Server::plan_snapshot_parts() {
   constexpr size_t kBudget = protocol::kMaxDatagramBytes - 100;  // header, vectors, Snapshot table
   snapshot_parts_.clear();
@@ -633,15 +661,15 @@ void Server::plan_snapshot_parts() {
     part.fighters_end = fighter;
     part.avatars_begin = avatar;
     for (;;) {
-      if (avatar == snapshot_states_.size()) break;
-      const size_t body = (terrain_before_[avatar + 1] - terrain_before_[avatar]) * sizeof(wire::TerrainBody);
+      if (avatar == view_states_.size()) break;
+      const size_t body = (view_terrain_before_[avatar + 1] - view_terrain_before_[avatar]) * sizeof(wire::TerrainBody);
       if (bytes + sizeof(wire::AvatarState) + body > kBudget) break;
       bytes += sizeof(wire::AvatarState) + body;
       ++avatar;
     }
     part.avatars_end = avatar;
     snapshot_parts_.push_back(part);
-  } while ((fighter < fighter_poses_.size() || avatar < snapshot_states_.size()) && snapshot_parts_.size() < 255);
+  } while ((fighter < fighter_poses_.size() || avatar < view_states_.size()) && snapshot_parts_.size() < 255);
 }
 
 // ---------------------------------------------------------------------------------------------

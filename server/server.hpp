@@ -21,6 +21,7 @@
 #include "admin_http.hpp"
 #include "fighters/fighter_assets.hpp"
 #include "fighters/fighter_npc.hpp"
+#include "interest.hpp"
 #include "lookahead_workers.hpp"
 #include "protocol/cookie.hpp"
 #include "protocol/packet.hpp"
@@ -160,6 +161,7 @@ class Server {
   void think_fighters(Clock::time_point now);
   void animate_fighters(int64_t frames_due);
   void collect_fighter_poses();
+  void build_view(size_t receiver, bool interest);
   void plan_snapshot_parts();
   void judge_strike(Player& fighter, const StrikeFrame& frame);
   vec3 head_position(const LookaheadAvatar& avatar);
@@ -216,6 +218,14 @@ class Server {
   std::vector<SnapshotPart> snapshot_parts_;
   std::vector<wire::TerrainBody> snapshot_terrain_;  ///< Terrain avatars' bodies, in snapshot_states_ order.
   std::vector<uint32_t> terrain_before_;             ///< Per snapshot avatar (and one past): bodies before it.
+  std::vector<vec2> snapshot_positions_;             ///< Per snapshot avatar: where it stands (interest).
+  InterestGrid interest_grid_;
+  // One client's view of the snapshot (build_view), reused for every client.
+  std::vector<uint32_t> view_index_;
+  std::vector<uint8_t> view_far_;
+  std::vector<wire::AvatarState> view_states_;
+  std::vector<wire::TerrainBody> view_terrain_;
+  std::vector<uint32_t> view_terrain_before_;
   bool terrain_mode_ = false;
   terrain::TerrainAvatarConfig terrain_config_;
   std::vector<terrain::TerrainNeighbour> terrain_neighbours_;  ///< Reused per planning avatar.

@@ -48,6 +48,10 @@ struct ServerConfig {
   /// costs about a millisecond); verified joins beyond it wait in a queue, first come first served.
   int max_joins_per_tick = 4;
   MotionSource motions;            ///< Default library, or --motions DIR.
+  /// Interest management (interest.hpp): avatars within this of a client's own go into its every
+  /// snapshot, the others every far_every-th (0: never). 0 m: everyone in every snapshot.
+  float interest_radius_m = 0.0f;
+  int far_every = 4;
   // The admin endpoint (admin_http.hpp): loopback unless told otherwise, behind a token.
   std::string admin_bind = "127.0.0.1";
   int admin_port = 7778;           ///< -1: no endpoint; 0: any free port.

@@ -61,6 +61,13 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
   app.add_flag("--console", out.console,
                "Read supervisor commands from stdin (fighters, order <id|all> punch|kick|any, auto on|off, help)");
   app.add_option("--seconds", out.seconds, "Stop after this long (0: run until Ctrl-C)")->check(CLI::Range(0.0, 1e7));
+  app.add_option("--interest-radius-m", c.interest_radius_m,
+                 "Avatars this near a client's own go into its every snapshot, the rest every --far-every (0: all always)")
+      ->check(CLI::Range(0.0, 10000.0))
+      ->capture_default_str();
+  app.add_option("--far-every", c.far_every, "Farther avatars go into every N-th snapshot (0: never)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
   app.add_option("--admin-bind", c.admin_bind, "Admin endpoint address (loopback by default)")->capture_default_str();
   app.add_option("--admin-port", c.admin_port, "Admin endpoint TCP port (-1: none; 0: any free port)")
       ->check(CLI::Range(-1, 65535))

@@ -31,6 +31,9 @@ enum AvatarFlags : uint8_t {
   /// Walks by the terrain planners: no segment; start_x/z and start_heading are where its pelvis
   /// stands now, its body is the snapshot's TerrainBody with the same id.
   kAvatarTerrain = 1u << 4,
+  /// Beyond the receiver's interest radius: it comes only every few snapshots (the client keeps
+  /// showing it in between).
+  kAvatarFar = 1u << 5,
 };
 /// AvatarState::segment of a terrain avatar.
 inline constexpr uint16_t kNoSegment = 0xFFFF;

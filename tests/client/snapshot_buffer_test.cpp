@@ -1,6 +1,7 @@
 #include "snapshot_buffer.hpp"
 
 #include "library/library_source.hpp"
+#include "protocol/protocol.hpp"
 
 #include <gtest/gtest.h>
 
@@ -156,6 +157,38 @@ TEST(SnapshotBuffer, FullBufferDropsTheOldestAndTooOldSnapshots) {
   buf.push(0.325, 0.5, {&a, 1});  // between kept ones: the oldest goes
   EXPECT_EQ(buf.size(), 4u);
   EXPECT_NEAR(buf.newest_time(), 0.45, 1e-9);
+}
+
+TEST(SnapshotBuffer, AFarAvatarIsShownBetweenItsSparseSnapshots) {
+  // A near avatar (1) in every snapshot, a far one (2, flagged kAvatarFar) in every 4th: the far
+  // one is shown all along, interpolated between its own snapshots.
+  const int seg = long_segment(30);
+  SnapshotBuffer buf;
+  for (int i = 0; i <= 12; ++i) {
+    std::vector<AvatarEntry> es{entry(1, seg, i)};
+    if (i % 4 == 0) {
+      es.push_back(entry(2, seg, 2 * i));
+      es.back().flags = protocol::kAvatarFar;
+    }
+    buf.push(0.05 * i, 0.05 * i, es);
+  }
+  std::vector<ShownAvatar> out;
+  for (double t = 0.0; t <= 0.6; t += 0.01) {
+    buf.sample(library(), t, out);
+    ASSERT_EQ(out.size(), 2u) << "at " << t;
+    EXPECT_EQ(out[0].id, 1u);
+    EXPECT_EQ(out[1].id, 2u);
+    EXPECT_NEAR(shown_frame(out[1]), 2 * t / 0.05, 0.05) << "at " << t;
+  }
+  // Without the flag a missing avatar is gone (it left).
+  SnapshotBuffer plain;
+  for (int i = 0; i <= 4; ++i) {
+    std::vector<AvatarEntry> es{entry(1, seg, i)};
+    if (i == 0) es.push_back(entry(2, seg, 0));
+    plain.push(0.05 * i, 0.05 * i, es);
+  }
+  plain.sample(library(), 0.12, out);
+  EXPECT_EQ(out.size(), 1u);
 }
 
 }  // namespace

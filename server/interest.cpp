@@ -1,0 +1,60 @@
+#include "interest.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight::server {
+
+void InterestGrid::build(std::span<const vec2> positions, float cell_m) {
+  positions_ = positions;
+  cell_m_ = cell_m > 0.0f ? cell_m : 1.0f;
+  scratch_.clear();
+  for (uint32_t i = 0; i < positions.size(); ++i) {
+    const vec2 p = positions[i] / cell_m_;
+    scratch_.push_back({key(static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y))), i});
+  }
+  std::sort(scratch_.begin(), scratch_.end());
+  order_.clear();
+  cells_.clear();
+  for (const auto& [k, i] : scratch_) {
+    if (cells_.empty() || cells_.back().first != k) cells_.push_back({k, static_cast<uint32_t>(order_.size())});
+    order_.push_back(i);
+  }
+}
+
+void InterestGrid::near(vec2 at, float radius_m, std::vector<uint32_t>& out) const {
+  const vec2 c = at / cell_m_;
+  const int cx = static_cast<int>(std::floor(c.x)), cz = static_cast<int>(std::floor(c.y));
+  const float r2 = radius_m * radius_m;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int64_t k = key(cx + dx, cz + dz);
+      const auto it = std::lower_bound(cells_.begin(), cells_.end(), std::pair<int64_t, uint32_t>{k, 0});
+      if (it == cells_.end() || it->first != k) continue;
+      const uint32_t end = it + 1 == cells_.end() ? static_cast<uint32_t>(order_.size()) : (it + 1)->second;
+      for (uint32_t j = it->second; j < end; ++j) {
+        const vec2 d = positions_[order_[j]] - at;
+        if (glm::dot(d, d) <= r2) out.push_back(order_[j]);
+      }
+    }
+}
+
+void select_interest(const InterestGrid& grid, std::span<const vec2> positions, uint32_t own, float radius_m,
+                     bool far_due, std::vector<uint32_t>& out, std::vector<uint8_t>& far) {
+  out.clear();
+  far.assign(positions.size(), 0);
+  if (far_due) {
+    // Everyone: mark who is far.
+    const float r2 = radius_m * radius_m;
+    for (uint32_t i = 0; i < positions.size(); ++i) {
+      const vec2 d = positions[i] - positions[own];
+      far[i] = i != own && glm::dot(d, d) > r2;
+      out.push_back(i);
+    }
+    return;
+  }
+  grid.near(positions[own], radius_m, out);  // includes own
+  std::sort(out.begin(), out.end());
+}
+
+}  // namespace foresight::server
