@@ -23,7 +23,7 @@ std::string Server::admin_command(const std::string& line) {
   in >> verb >> who >> what;
   if (verb.empty()) return "";
   if (verb == "help")
-    return "commands: fighters | order <id|all> punch|kick|any | auto on|off | set budget-ms|margin-ms <ms> | "
+    return "commands: fighters | order <id|all> punch|kick|any | auto on|off | set budget-ms|avatar-budget-ms|margin-ms <ms> | "
            "set strategy <name> | set resort-ticks <n> | help";
   if (verb == "set") return admin_set(who, what);
   if (verb == "fighters") {
@@ -70,9 +70,11 @@ std::string Server::admin_command(const std::string& line) {
 
 std::string Server::admin_set(const std::string& key, const std::string& value) {
   double v = 0;
-  if (key == "budget-ms" || key == "margin-ms") {
+  if (key == "budget-ms" || key == "margin-ms" || key == "avatar-budget-ms") {
     if (!parse_number(value, 0.0, 1000.0, v)) return "usage: set " + key + " <0-1000>";
-    (key == "budget-ms" ? config_.lookahead_budget_ms : config_.tick_safety_margin_ms) = v;
+    (key == "budget-ms" ? config_.lookahead_budget_ms
+     : key == "margin-ms" ? config_.tick_safety_margin_ms
+                          : config_.lookahead_avatar_max_ms) = v;
     return key + " " + value;
   }
   if (key == "resort-ticks") {
@@ -92,7 +94,7 @@ std::string Server::admin_set(const std::string& key, const std::string& value) 
     }
     return "strategy " + std::string(strategy_name(s)) + " (trees regrow from their roots)";
   }
-  return "unknown setting '" + key + "' (budget-ms, margin-ms, strategy, resort-ticks)";
+  return "unknown setting '" + key + "' (budget-ms, avatar-budget-ms, margin-ms, strategy, resort-ticks)";
 }
 
 }  // namespace foresight::server

@@ -5,6 +5,7 @@
 //   order <id|all> punch|kick|any order a strike at the target's head as it is now (paper 3.5)
 //   auto <on|off>                 the fighters' own policy (strike in reach after a cool-down)
 //   set budget-ms <ms>            look-ahead budget per tick, at most (0-1000)
+//   set avatar-budget-ms <ms>     look-ahead time one avatar may take per tick (0: no cap)
 //   set margin-ms <ms>            tick time kept free of look-ahead (0-1000)
 //   set strategy <name>           exploration strategy (trees keep their root and regrow)
 //   set resort-ticks <n>          re-prioritise trees at least every n ticks (1-1000)

@@ -801,8 +801,9 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
     GrowBudget budget;
     const bool timed = config_.expansions_per_avatar <= 0;
     if (timed) {
-      const auto slice =
-          std::chrono::duration<double, std::milli>(phase.per_weight_ms * grow_weight_[static_cast<size_t>(item)]);
+      double slice_ms = phase.per_weight_ms * grow_weight_[static_cast<size_t>(item)];
+      if (config_.lookahead_avatar_max_ms > 0) slice_ms = std::min(slice_ms, config_.lookahead_avatar_max_ms);
+      const auto slice = std::chrono::duration<double, std::milli>(slice_ms);
       budget = GrowBudget::until(std::min(phase.end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
     } else {
       budget = GrowBudget::expansions(config_.expansions_per_avatar);

@@ -27,6 +27,8 @@ struct ServerConfig {
   /// Look-ahead budget per tick: what the tick period leaves after the rest of the tick, minus the
   /// safety margin, at most this much (ms of wall-clock per tick, across all threads).
   double lookahead_budget_ms = 8.0;
+  /// At most this much of it for one avatar in one tick (0: no cap beyond its share by need).
+  double lookahead_avatar_max_ms = 0.0;
   double tick_safety_margin_ms = 6.0;
   /// Deterministic mode (tests, experiments): > 0 grows every tree by exactly this many
   /// expansions per tick instead of a time budget; 0 uses time.

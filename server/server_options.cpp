@@ -24,6 +24,10 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
       ->check(CLI::Range(0.1, 3600.0))->capture_default_str();
   app.add_option("--budget-ms", c.lookahead_budget_ms, "Look-ahead budget per tick at most, ms")
       ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+  app.add_option("--avatar-budget-ms", c.lookahead_avatar_max_ms,
+                 "Look-ahead time one avatar may take in a tick, at most, ms (0: its share by need)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
   app.add_option("--margin-ms", c.tick_safety_margin_ms, "Tick time kept free of look-ahead, ms")
       ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
   app.add_option("--expansions", c.expansions_per_avatar,
@@ -39,6 +43,13 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
                  "Re-prioritise trees at least every N ticks (also on command change and before decisions)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--tree-depth", c.tree_max_depth, "Tree depth cap")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--max-challenges-per-tick", c.max_challenges_per_tick,
+                 "Answers to unverified addresses per tick at most (challenges, bad-cookie refusals)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--max-joins-per-tick", c.max_joins_per_tick, "Verified joins admitted per tick at most (the rest queue)")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
   app.add_option("--max-packets-per-s", c.max_packets_per_s, "Per-session packet rate limit")
       ->check(CLI::Range(1, 100000))->capture_default_str();
   app.add_option("--locomotion", out.locomotion_name,
@@ -53,6 +64,13 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
   app.add_flag("--fighters-supervised", out.supervised, "Fighters strike only when ordered (no own policy)");
   app.add_option("--fighter-cooldown-s", c.fighter_cooldown_s, "Fighters' own policy: seconds between strikes")
       ->check(CLI::Range(0.0, 600.0))
+      ->capture_default_str();
+  app.add_option("--fighter-morphology", c.fighter_morphology,
+                 "Fighters' body (-1: they cycle through the five morphologies; 0-4: all this one)")
+      ->check(CLI::Range(-1, 4))
+      ->capture_default_str();
+  app.add_option("--fighter-hit-radius-m", c.fighter_hit_radius_m, "A strike hits when the effector comes this close to the head")
+      ->check(CLI::Range(0.01, 2.0))
       ->capture_default_str();
   app.add_option("--fighter-strikes", c.fighter_strikes, "Extra BVH folder of strikes for the fighters");
   app.add_option("--fighter-strikes-sidecar", c.fighter_strikes_sidecar,

@@ -397,8 +397,38 @@ def arena_scene():
     }
 
 
+def field_scene():
+    """A 64 x 64 m open field for load tests (1000 avatars stand in it), a few pillars."""
+    lo, hi = [-32.3, -32.3], [32.3, 32.3]
+    h = 1.0
+    boxes = [
+        box("wall", "low-wall-west", [-32.3, 0, -32.3], [-32.0, h, 32.3]),
+        box("wall", "low-wall-east", [32.0, 0, -32.3], [32.3, h, 32.3]),
+        box("wall", "low-wall-south", [-32.0, 0, -32.3], [32.0, h, -32.0]),
+        box("wall", "low-wall-north", [-32.0, 0, 32.0], [32.0, h, 32.3]),
+    ]
+    for i, (x, z) in enumerate([(-16, -16), (16, -16), (-16, 16), (16, 16), (0, 18), (0, -18)]):
+        boxes.append(box("obstacle", f"pillar-{i + 1}", [x - 0.5, 0, z - 0.5], [x + 0.5, 3.0, z + 0.5]))
+    spawns = [{"name": f"spawn-{r}-{c}", "pos": [-24.0 + 12.0 * c, -24.0 + 12.0 * r], "heading_deg": 0.0}
+              for r in range(5) for c in range(5)]
+    goals = [{"name": f"goal-{i + 1}", "pos": list(p), "radius": 1.0}
+             for i, p in enumerate([(-28, -28), (28, -28), (-28, 28), (28, 28), (0, 0), (0, 28), (0, -28)])]
+    return {
+        "format": "foresight-scene", "version": 1,
+        "name": "field",
+        "_comment": "Open 64x64 m field inside 1 m walls, six pillars, 25 spawns on a 12 m grid: load tests.",
+        "bounds": {"min": lo, "max": hi},
+        "boxes": boxes,
+        "spawns": spawns,
+        "goals": goals,
+        "cameras": quadrant_cameras(lo, hi, height=20.0),
+        "npcs": [],
+    }
+
+
 if __name__ == "__main__":
     write_scene("maze.json", maze_scene())
     write_scene("obstacles.json", obstacles_scene())
     write_scene("terrain.json", terrain_scene())
     write_scene("arena.json", arena_scene())
+    write_scene("field.json", field_scene())

@@ -120,6 +120,8 @@ TEST(Admin, CommandsChangeTheRunningServer) {
   ASSERT_EQ(res->status, 200);
   EXPECT_EQ(res->body, "budget-ms 3.5\n");
   EXPECT_DOUBLE_EQ(r.server.config().lookahead_budget_ms, 3.5);
+  EXPECT_EQ(r.command("set avatar-budget-ms 0.5")->body, "avatar-budget-ms 0.5\n");
+  EXPECT_DOUBLE_EQ(r.server.config().lookahead_avatar_max_ms, 0.5);
   res = r.command("set strategy breadth-first");
   EXPECT_NE(res->body.find("breadth-first"), std::string::npos) << res->body;
   EXPECT_EQ(r.server.avatar(c.avatar)->tree().strategy(), Strategy::kBreadthFirst);

@@ -1,4 +1,4 @@
-// The four built-in scenes load, have what the brief asks of them, and their cameras cover every
+// The built-in scenes load, have what the brief asks of them, and their cameras cover every
 // walkable point.
 #include "world_test_util.hpp"
 
@@ -9,7 +9,7 @@
 namespace foresight {
 namespace {
 
-const char* const kBuiltinScenes[] = {"maze", "obstacles", "terrain", "arena"};
+const char* const kBuiltinScenes[] = {"maze", "obstacles", "terrain", "arena", "field"};
 
 const SceneBox* find_box(const Scene& scene, const std::string& name) {
   for (const SceneBox& b : scene.boxes)
