@@ -422,10 +422,17 @@ BotReport bot_fleet_run(const MotionLibrary& library, const BotFleetConfig& conf
 
   // The server's own figures, then goodbye.
   if (fleet.connected_now() > 0) {
-    fleet.request_stats();
     const Clock::time_point stats_deadline =
         Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config.stats_wait_s));
-    while (!fleet.stats_arrived() && fleet.connected_now() > 0 && Clock::now() < stats_deadline) one_frame();
+    // Asked again every 250 ms: on a lossy link the request or its answer may be lost.
+    Clock::time_point next_request = Clock::now();
+    while (!fleet.stats_arrived() && fleet.connected_now() > 0 && Clock::now() < stats_deadline) {
+      if (Clock::now() >= next_request) {
+        fleet.request_stats();
+        next_request += std::chrono::milliseconds(250);
+      }
+      one_frame();
+    }
   }
   BotReport report = fleet.report(Clock::now());
   fleet.disconnect_all();

@@ -7,6 +7,7 @@
 #include "bot_fleet.hpp"
 #include "library/library_source.hpp"
 #include "library/motion_source_cli.hpp"
+#include "protocol/impairment_cli.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -54,13 +55,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 240.0))
       ->capture_default_str();
   // The network impairment layer (docs/RELIABILITY.md), both directions of every bot's link.
-  protocol::ImpairmentConfig& imp = config.impairment;
-  app.add_option("--loss", imp.loss, "Impairment: share of datagrams lost, each way")->check(CLI::Range(0.0, 1.0));
-  app.add_option("--latency-ms", imp.latency_ms, "Impairment: one-way delay")->check(CLI::Range(0.0, 10000.0));
-  app.add_option("--jitter-ms", imp.jitter_ms, "Impairment: delay varies by up to this")->check(CLI::Range(0.0, 10000.0));
-  app.add_option("--duplicate", imp.duplicate, "Impairment: share of datagrams duplicated")->check(CLI::Range(0.0, 1.0));
-  app.add_option("--reorder", imp.reorder, "Impairment: share of datagrams held back behind later ones")
-      ->check(CLI::Range(0.0, 1.0));
+  protocol::add_impairment_options(app, config.impairment);
   app.add_option("--churn-s", config.churn_every_s, "Soak: every this many seconds one bot leaves and joins again")
       ->check(CLI::Range(0.0, 3600.0));
   app.add_flag("!--no-reconnect", config.reconnect, "Bots whose server went away stay gone (no back-off retries)");

@@ -111,7 +111,7 @@ vec3 colour_of(const ShownAvatar& a, uint32_t own_id) {
 class Session {
  public:
   Session(GLFWwindow* window, const MotionLibrary& library, const ClientOptions& options)
-      : window_(window), library_(library), options_(options), connection_(connection_config()),
+      : window_(window), library_(library), options_(options), connection_(connection_config(options)),
         buffer_(buffer_config(options)), morphologies_(with_default(default_morphologies())),
         terrain_(morphologies_.back(), static_cast<uint8_t>(morphologies_.size() - 1)),
         strikes_(strike_config(options)) {
@@ -133,9 +133,10 @@ class Session {
   bool frame(int& status);
 
  private:
-  static protocol::ClientConfig connection_config() {
+  static protocol::ClientConfig connection_config(const ClientOptions& o) {
     protocol::ClientConfig c;
     c.min_input_interval = kInputInterval;
+    c.impairment = o.impairment;
     return c;
   }
   static StrikeFeedbackConfig strike_config(const ClientOptions& o) {

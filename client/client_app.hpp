@@ -2,6 +2,7 @@
 // The interactive client: a GLFW window, the connection to the server, the snapshot buffer, the
 // cameras and the renderer, driven one frame at a time (docs/CLIENT.md).
 #include "lookahead/recording.hpp"
+#include "protocol/impairment.hpp"
 #include "protocol/udp_socket.hpp"
 
 #include <atomic>
@@ -35,6 +36,8 @@ struct ClientOptions {
   /// many seconds after connecting (tests resizing under Xvfb, where nobody drags a border).
   double resize_at_s = 0;
   int resize_width = 0, resize_height = 0;
+  /// The link through the impairment layer (--loss, --latency-ms, ...: docs/RELIABILITY.md).
+  protocol::ImpairmentConfig impairment;
 };
 
 /// Runs until the window closes, Escape, `stop` or (screenshot mode) the PNG is written.

@@ -8,6 +8,7 @@
 
 #include "library/library_source.hpp"
 #include "library/motion_source_cli.hpp"
+#include "protocol/impairment_cli.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   app.add_option("--delay-ms", delay_ms, "Interpolation delay behind the newest snapshot")
       ->check(CLI::Range(0.0, 2000.0))
       ->capture_default_str();
+  protocol::add_impairment_options(app, options.impairment);
   app.add_option("--width", options.width, "Window width")->check(CLI::Range(64, 8192))->capture_default_str();
   app.add_option("--height", options.height, "Window height")->check(CLI::Range(64, 8192))->capture_default_str();
   app.add_flag("--tree-overlay", options.tree_overlay,
