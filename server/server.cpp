@@ -660,8 +660,7 @@ void Server::plan_snapshot_parts() {
       bytes += 64 + 4 * fighter_poses_[fighter++].num_rotations;
     part.fighters_end = fighter;
     part.avatars_begin = avatar;
-    for (;;) {
-      if (avatar == view_states_.size()) break;
+    while (avatar < view_states_.size()) {
       const size_t body = (view_terrain_before_[avatar + 1] - view_terrain_before_[avatar]) * sizeof(wire::TerrainBody);
       if (bytes + sizeof(wire::AvatarState) + body > kBudget) break;
       bytes += sizeof(wire::AvatarState) + body;

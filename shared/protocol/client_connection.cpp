@@ -122,7 +122,8 @@ void ClientConnection::poll(TimePoint now) {
       drops_.add(DropReason::kUnexpected);
       continue;
     }
-    if (static_cast<size_t>(n) > receive_buffer_.size()) {
+    if (static_cast<size_t>(n) > receive_buffer_.size()) {  // cut off by the buffer: never on the wire
+      bytes_received_ += static_cast<uint64_t>(n);
       ++packets_received_;
       drops_.add(DropReason::kTooLarge);
       continue;
@@ -435,14 +436,7 @@ void ClientConnection::flush(TimePoint now) {
 }
 
 void ClientConnection::release_sends(TimePoint now) {
-  if (!up_) return;
-  up_->release(now, [this](std::span<const uint8_t> d) {
-    if (socket_.send(d, server_)) {
-      bytes_sent_ += d.size();
-    } else {
-      ++send_failures_;
-    }
-  });
+  if (up_) up_->release(now, [this](std::span<const uint8_t> d) { send_now(d); });
 }
 
 void ClientConnection::flush_messages(TimePoint now) {
@@ -538,8 +532,12 @@ void ClientConnection::disconnect() {
 void ClientConnection::send(std::span<const uint8_t> datagram) {
   if (up_) {
     up_->push(datagram, now_);  // sent by a later flush(), when due
-    return;
+  } else {
+    send_now(datagram);
   }
+}
+
+void ClientConnection::send_now(std::span<const uint8_t> datagram) {
   if (socket_.send(datagram, server_)) {
     bytes_sent_ += datagram.size();
   } else {

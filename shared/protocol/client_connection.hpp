@@ -246,6 +246,7 @@ class ClientConnection {
   void send(std::span<const uint8_t> datagram);
   void flush_messages(TimePoint now);
   void release_sends(TimePoint now);
+  void send_now(std::span<const uint8_t> datagram);  ///< On the socket, counted.
   void take_datagram(std::span<const uint8_t> datagram, TimePoint now);
   void remember_send_time(uint32_t client_time_ms, TimePoint at);
   void set_state(ClientState state, std::string message);

@@ -77,7 +77,9 @@ PathCursor path_cursor(const GroundPath& path, float s_m) {
 
 void add_piece(GroundPath& path, float length_m, float curvature_per_m) {
   if (!(length_m > 0.0f)) return;
-  if (path.num_pieces == kMaxPathPieces) {  // never with ground_path_steer's inputs; keep it exact anyway
+  // ground_path_steer makes at most 4 pieces (lead-in, two of the walked stretch, the turn); a
+  // caller going beyond the capacity gets the rest merged into the last piece.
+  if (path.num_pieces == kMaxPathPieces) {
     path.pieces[static_cast<size_t>(path.num_pieces - 1)].length_m += length_m;
     return;
   }

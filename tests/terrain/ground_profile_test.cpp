@@ -35,6 +35,29 @@ TEST(GroundProfile, PathsLinesAndArcs) {
   EXPECT_EQ(still.curvature_per_m, 0.0f);
 }
 
+TEST(GroundProfile, ASteeredPathKeepsTheWalkedStretchAndThenTurns) {
+  // Twice steered, as the terrain avatar does at each step: the stretch from the rear to the
+  // stance foot lies exactly where it lay on the walked path, then the path turns by the asked
+  // angle over the asked length and runs straight.
+  const GroundPath first = ground_path_from_velocity({1.0f, 2.0f}, 0.3f, 1.2f, 0.5f);
+  const GroundPath second = ground_path_steer(first, 0.4f, 1.0f, 0.3f, 0.4f, 0.65f);
+  const GroundPath third = ground_path_steer(second, 0.3f + 0.6f - 0.55f, 0.3f + 0.6f, 0.3f, -0.5f, 0.65f);
+  for (float x = 0.0f; x <= 0.6f; x += 0.05f) {
+    EXPECT_LT(glm::length(ground_path_point(second, 0.3f + x) - ground_path_point(first, 0.4f + x)), 1e-5f) << x;
+    EXPECT_NEAR(wrap_angle(ground_path_heading(second, 0.3f + x) - ground_path_heading(first, 0.4f + x)), 0.0f, 1e-5f);
+  }
+  const float stance2 = 0.3f + 0.6f;
+  EXPECT_NEAR(wrap_angle(ground_path_heading(second, stance2 + 0.65f) - ground_path_heading(first, 1.0f)), 0.4f, 1e-5f);
+  EXPECT_NEAR(wrap_angle(ground_path_heading(second, stance2 + 3.0f) - ground_path_heading(second, stance2 + 0.65f)), 0.0f,
+              1e-5f) << "straight after the turn";
+  // The third keeps the second's stretch, which itself partly lies on the first.
+  for (float x = 0.0f; x <= 0.55f; x += 0.05f)
+    EXPECT_LT(glm::length(ground_path_point(third, 0.3f + x) - ground_path_point(second, stance2 - 0.55f + x)), 1e-5f) << x;
+  EXPECT_LE(third.num_pieces, 4);
+  // Behind the rear foot: a straight lead-in along the rear foot's heading.
+  EXPECT_NEAR(wrap_angle(ground_path_heading(second, 0.0f) - ground_path_heading(first, 0.4f)), 0.0f, 1e-5f);
+}
+
 TEST(GroundProfile, SyntheticProfilesAndCapacity) {
   GroundProfile profile;
   ground_profile_flat(profile, 1.0f, 0.3f);
