@@ -119,6 +119,34 @@ void SnapshotBuffer::push(double server_time_s, double local_s, std::span<const 
             [](const AvatarEntry& a, const AvatarEntry& b) { return a.id < b.id; });
 }
 
+// Avatar `a` as held by snapshot j (at or before t): interpolated towards the next snapshot holding
+// it (a lost part may have left it out of the very next), else played on at the clip's rate,
+// capped (late, or gone next).
+ShownAvatar SnapshotBuffer::show(const MotionLibrary& library, size_t j, const AvatarEntry& a, double t) const {
+  ShownAvatar shown;
+  shown.id = a.id;
+  shown.flags = a.flags;
+  const double t0 = at(j).time_s;
+  const AvatarEntry* b = nullptr;
+  double t1 = 0;
+  for (size_t k = j + 1; k < count_ && !b; ++k) {
+    b = at(k).find(a.id);
+    t1 = at(k).time_s;
+  }
+  if (t <= t0) {
+    shown.state = a.state;
+  } else if (b) {
+    interpolate(library, a.state, b->state, (t - t0) / (t1 - t0), shown);
+    shown.flags = b->flags;
+  } else {
+    shown.state = a.state;
+    advance_frames(library, shown.state, shown.frame_alpha,
+                   std::min(t - t0, config_.max_extrapolation_s) * segment_fps(library, a.state.segment));
+    shown.extrapolated = true;
+  }
+  return shown;
+}
+
 void SnapshotBuffer::sample(const MotionLibrary& library, double t, std::vector<ShownAvatar>& out) const {
   out.clear();
   if (count_ == 0) return;
@@ -126,33 +154,9 @@ void SnapshotBuffer::sample(const MotionLibrary& library, double t, std::vector<
   size_t i0 = 0;
   while (i0 + 1 < count_ && at(i0 + 1).time_s <= t) ++i0;
   const Snapshot& s0 = at(i0);
-  for (const AvatarEntry& a : s0.avatars) {
-    ShownAvatar shown;
-    shown.id = a.id;
-    shown.flags = a.flags;
-    // The next snapshot holding this avatar (a lost part may have left it out of the very next).
-    const AvatarEntry* b = nullptr;
-    double t1 = 0;
-    for (size_t j = i0 + 1; j < count_ && !b; ++j) {
-      b = at(j).find(a.id);
-      t1 = at(j).time_s;
-    }
-    if (t <= s0.time_s) {
-      shown.state = a.state;
-    } else if (b) {
-      interpolate(library, a.state, b->state, (t - s0.time_s) / (t1 - s0.time_s), shown);
-      shown.flags = b->flags;
-    } else {
-      // Late (or gone next): play on at the clip's rate, capped.
-      const double dt = std::min(t - s0.time_s, config_.max_extrapolation_s);
-      shown.state = a.state;
-      advance_frames(library, shown.state, shown.frame_alpha, dt * segment_fps(library, a.state.segment));
-      shown.extrapolated = true;
-    }
-    out.push_back(shown);
-  }
-  // Far avatars come every few snapshots: those missing from s0 are shown from their own latest
-  // snapshot at or before t (within far_hold_s) towards their next one.
+  for (const AvatarEntry& a : s0.avatars) out.push_back(show(library, i0, a, t));
+  // Far avatars come every few snapshots: those missing from s0 are shown from their own newest
+  // snapshot at or before t (within far_hold_s).
   const size_t from_s0 = out.size();
   for (size_t j = i0; j-- > 0 && at(j).time_s >= t - config_.far_hold_s;) {
     for (const AvatarEntry& a : at(j).avatars) {
@@ -160,24 +164,7 @@ void SnapshotBuffer::sample(const MotionLibrary& library, double t, std::vector<
       if (std::any_of(out.begin() + static_cast<std::ptrdiff_t>(from_s0), out.end(),
                       [&](const ShownAvatar& x) { return x.id == a.id; }))
         continue;  // a newer snapshot held it already
-      ShownAvatar shown;
-      shown.id = a.id;
-      shown.flags = a.flags;
-      const AvatarEntry* b = nullptr;
-      double t1 = 0;
-      for (size_t k = j + 1; k < count_ && !b; ++k) {
-        b = at(k).find(a.id);
-        t1 = at(k).time_s;
-      }
-      if (b != nullptr && t1 > t) {
-        interpolate(library, a.state, b->state, (t - at(j).time_s) / (t1 - at(j).time_s), shown);
-      } else {
-        shown.state = a.state;
-        advance_frames(library, shown.state, shown.frame_alpha,
-                       std::min(t - at(j).time_s, config_.max_extrapolation_s) * segment_fps(library, a.state.segment));
-        shown.extrapolated = true;
-      }
-      out.push_back(shown);
+      out.push_back(show(library, j, a, t));
     }
   }
   if (out.size() > from_s0)

@@ -68,6 +68,7 @@ class SnapshotBuffer {
     const AvatarEntry* find(uint32_t id) const;
   };
   const Snapshot& at(size_t i) const { return slots_[order_[i]]; }
+  ShownAvatar show(const MotionLibrary& library, size_t j, const AvatarEntry& a, double t) const;
 
   SnapshotBufferConfig config_;
   std::vector<Snapshot> slots_;  ///< Storage, reused.
