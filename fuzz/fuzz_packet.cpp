@@ -92,6 +92,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (const wire::TreeNodeSample* n : *nodes) take(n->parent() + n->segment() + n->depth());
       break;
     }
+    case wire::Message::Sealed: {
+      const auto* m = p->message_as_Sealed();
+      take(m->session() + m->sequence()), take(m->payload());
+      break;
+    }
     default: break;
   }
   return 0;

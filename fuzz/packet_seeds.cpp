@@ -46,6 +46,9 @@ int main(int argc, char** argv) {
                                              fbb.CreateVector(&fighter, 1), fbb.CreateVectorOfStructs(&event, 1),
                                              fbb.CreateVectorOfStructs(&body, 1));
   save(w.finish(snapshot));
+  auto& sealed_fbb = w.begin();
+  const std::array<uint8_t, 40> payload{1, 2, 3};
+  save(w.finish(wire::CreateSealed(sealed_fbb, 1, 7, sealed_fbb.CreateVector(payload.data(), payload.size()))));
   std::printf("%d seeds in %s\n", n, dir.c_str());
   return 0;
 }

@@ -28,6 +28,10 @@ struct Server::Player {
   uint32_t ack_snapshot = 0;
   uint32_t echo_client_time_ms = 0;
   double tokens = 0;            ///< Packet rate limit (token bucket).
+  // The session's keys: what we send is sealed, what it sends is opened (session_crypto.hpp).
+  protocol::Sealer sealer;
+  protocol::Opener opener;
+  protocol::SessionKey server_public_key{};
   Clock::time_point tokens_at{};
 
   bool is_fighter() const { return fighter != nullptr; }

@@ -141,8 +141,12 @@ void Server::run() {
 void Server::close_sessions() {
   for (size_t i = players_.size(); i-- > 0;) {
     if (players_[i]->is_fighter()) continue;
-    for (int copy = 0; copy < 2; ++copy)
-      send_refuse(players_[i]->endpoint, wire::RefuseReason::ShuttingDown, "the server is shutting down");
+    for (int copy = 0; copy < 2; ++copy) {
+      auto& fbb = writer_.begin();
+      const auto text = fbb.CreateString("the server is shutting down");
+      send_sealed(*players_[i], writer_.finish(wire::CreateRefuse(fbb, wire::RefuseReason::ShuttingDown, text,
+                                                                  library_.content_hash)));
+    }
     ++counters_.sessions_closed;
     remove_player(i);
   }
@@ -300,22 +304,19 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
     case Message::ConnectResponse:
       on_connect_response(from, *packet.message_as_ConnectResponse(), now);
       return;
+    case Message::Sealed: break;
     case Message::Input:
     case Message::Heartbeat:
     case Message::Disconnect:
     case Message::StatsRequest:
-    case Message::TreeRequest: break;
+    case Message::TreeRequest:  // only inside a Sealed message: anyone could have sent this
+      counters_.drops.add(protocol::DropReason::kUnauthenticated);
+      return;
     default: counters_.drops.add(protocol::DropReason::kUnexpected); return;
   }
-  // In-session messages: the sender must be a player and name its session.
+  // A session's message: the sender must be a player; its rate is limited before any decryption.
   Player* p = find_player(from);
-  uint32_t session = 0;
-  if (auto* m = packet.message_as_Input()) session = m->session();
-  if (auto* m = packet.message_as_Heartbeat()) session = m->session();
-  if (auto* m = packet.message_as_Disconnect()) session = m->session();
-  if (auto* m = packet.message_as_StatsRequest()) session = m->session();
-  if (auto* m = packet.message_as_TreeRequest()) session = m->session();
-  if (p == nullptr || p->session != session) {
+  if (p == nullptr) {
     counters_.drops.add(protocol::DropReason::kUnexpected);
     return;
   }
@@ -328,6 +329,28 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
     return;
   }
   p->tokens -= 1.0;
+  protocol::DropReason reason = protocol::DropReason::kNone;
+  const wire::Packet* inner = p->opener.open(*packet.message_as_Sealed(), reason);
+  if (inner == nullptr) {
+    counters_.drops.add(reason);  // forged, corrupted, another session's, or replayed
+    return;
+  }
+  handle_session(*p, *inner, now);
+}
+
+void Server::handle_session(Player& player, const wire::Packet& packet, Clock::time_point now) {
+  using wire::Message;
+  Player* p = &player;
+  uint32_t session = 0;
+  if (auto* m = packet.message_as_Input()) session = m->session();
+  if (auto* m = packet.message_as_Heartbeat()) session = m->session();
+  if (auto* m = packet.message_as_Disconnect()) session = m->session();
+  if (auto* m = packet.message_as_StatsRequest()) session = m->session();
+  if (auto* m = packet.message_as_TreeRequest()) session = m->session();
+  if (p->session != session) {  // sealed by this session's key, yet naming another
+    counters_.drops.add(protocol::DropReason::kUnexpected);
+    return;
+  }
   p->last_heard = now;
   switch (packet.message_type()) {
     case Message::Input: on_input(*p, *packet.message_as_Input()); break;
@@ -412,12 +435,19 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
     send_refuse(from, wire::RefuseReason::ServerFull, "server full");
     return;
   }
+  const auto* client_key = m.client_key();
+  if (client_key == nullptr || client_key->size() != protocol::kSessionKeyBytes) {
+    send_refuse(from, wire::RefuseReason::ProtocolVersion, "no session key in the ConnectResponse: update the client");
+    return;
+  }
   // Verified (the cookie proves the address): queue it, once; admit_joins() takes a few per tick.
   const uint64_t key = endpoint_key(from);
   for (const PendingJoin& j : join_queue_)
     if (j.key == key && same_endpoint(j.endpoint, from)) return;  // already waiting
   if (!join_queue_.empty()) ++counters_.joins_deferred;
-  join_queue_.push_back({from, key, m.client_name() ? m.client_name()->str().substr(0, 64) : std::string()});
+  PendingJoin join{from, key, m.client_name() ? m.client_name()->str().substr(0, 64) : std::string(), {}};
+  std::copy(client_key->begin(), client_key->end(), join.client_key.begin());
+  join_queue_.push_back(std::move(join));
 }
 
 void Server::admit_joins(Clock::time_point now) {
@@ -440,6 +470,16 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
   p->session = next_session_++;
   p->avatar_id = next_avatar_++;
   p->name = join.name;
+  // The session's keys (session_crypto.hpp): ours for this session, the client's from its response.
+  const protocol::SessionKeyPair pair = protocol::session_keypair();
+  protocol::SessionKeys keys;
+  if (!protocol::session_keys_server(pair, join.client_key, keys)) {
+    send_refuse(from, wire::RefuseReason::ProtocolVersion, "unusable session key: update the client");
+    return;
+  }
+  p->sealer.set(p->session, keys.send);
+  p->opener.set(p->session, keys.receive);
+  p->server_public_key = pair.public_key;
   if (terrain_mode_) {
     p->terrain = std::make_unique<terrain::TerrainAvatar>();
     if (!terrain::terrain_avatar_init(*p->terrain, terrain_config_, scene_, spawn.pos_m, spawn.heading_rad)) {
@@ -509,13 +549,18 @@ void Server::send_accept(const Player& p) {
   auto& fbb = writer_.begin();
   const auto scene = fbb.CreateString(scene_.name);
   const auto lib = fbb.CreateString(library_.name);
+  const auto key = fbb.CreateVector(p.server_public_key.data(), p.server_public_key.size());
   send(writer_.finish(wire::CreateAccept(fbb, p.session, p.avatar_id, scene, lib, library_.content_hash,
                                          static_cast<uint16_t>(config_.tick_hz),
-                                         static_cast<uint16_t>(config_.snapshot_hz))),
+                                         static_cast<uint16_t>(config_.snapshot_hz), key)),
        p.endpoint);
 }
 
-void Server::send_stats(const Player& p) {
+void Server::send_sealed(Player& p, std::span<const uint8_t> inner) {
+  send(p.sealer.seal(seal_writer_, inner), p.endpoint);
+}
+
+void Server::send_stats(Player& p) {
   const TickRecord mean = stats_.mean();
   auto& fbb = writer_.begin();
   wire::ServerStatsBuilder b(fbb);
@@ -534,13 +579,13 @@ void Server::send_stats(const Player& p) {
   b.add_packets_in(counters_.packets_in);
   b.add_packets_dropped(counters_.drops.total());
   b.add_avatar_contacts(counters_.avatar_contacts);
-  send(writer_.finish(b.Finish()), p.endpoint);
+  send_sealed(p, writer_.finish(b.Finish()));
 }
 
 void Server::send_tree(Player& p) {
   // Only ever the requester's own tree: the session named in the request is the player's.
   if (!p.avatar) return;  // a terrain avatar has none
-  send(tree_summary_.write(writer_, p.avatar->tree(), tick_, p.avatar_id), p.endpoint);
+  send_sealed(p, tree_summary_.write(writer_, p.avatar->tree(), tick_, p.avatar_id));
 }
 
 void Server::send_snapshots(Clock::time_point now) {
@@ -579,7 +624,7 @@ void Server::send_snapshots(Clock::time_point now) {
   if (interest) interest_grid_.build(snapshot_positions_, config_.interest_radius_m);
   const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
   for (size_t receiver = 0; receiver < players_.size(); ++receiver) {
-    const Player& p = *players_[receiver];
+    Player& p = *players_[receiver];
     if (p.is_fighter()) continue;
     build_view(receiver, interest);
     plan_snapshot_parts();
@@ -608,9 +653,9 @@ void Server::send_snapshots(Clock::time_point now) {
       flatbuffers::Offset<flatbuffers::Vector<const wire::StrikeEventState*>> events = 0;
       if (plan.events && !snapshot_events_.empty())
         events = fbb.CreateVectorOfStructs(snapshot_events_.data(), snapshot_events_.size());
-      send(writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts, p.last_input_seq,
-                                               p.echo_client_time_ms, server_ms, avatars, fighters, events, terrain_bodies)),
-           p.endpoint);
+      send_sealed(p, writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts,
+                                                         p.last_input_seq, p.echo_client_time_ms, server_ms, avatars,
+                                                         fighters, events, terrain_bodies)));
     }
   }
 }
@@ -647,7 +692,8 @@ void Server::build_view(size_t receiver, bool interest) {
 // in part 0, then the avatars. Sizes are upper bounds of what FlatBuffers writes (tables: vtable
 // and alignment).
 void Server::plan_snapshot_parts() {
-  constexpr size_t kBudget = protocol::kMaxDatagramBytes - 100;  // header, vectors, Snapshot table
+  // Header, vectors, Snapshot table, and the Sealed wrapping around it.
+  constexpr size_t kBudget = protocol::kMaxDatagramBytes - 100 - protocol::kSealOverheadBytes;
   snapshot_parts_.clear();
   size_t fighter = 0, avatar = 0;
   do {

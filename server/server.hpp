@@ -25,6 +25,7 @@
 #include "lookahead_workers.hpp"
 #include "protocol/cookie.hpp"
 #include "protocol/packet.hpp"
+#include "protocol/session_crypto.hpp"
 #include "protocol/udp_socket.hpp"
 #include "server_config.hpp"
 #include "tick_stats.hpp"
@@ -134,6 +135,7 @@ class Server {
     protocol::Endpoint endpoint;
     uint64_t key = 0;
     std::string name;
+    protocol::SessionKey client_key{};
   };
 
   void receive(Clock::time_point now);
@@ -148,7 +150,10 @@ class Server {
   void admit(const PendingJoin& join, Clock::time_point now);
   void send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message);
   void send_accept(const Player& p);
-  void send_stats(const Player& p);
+  void send_stats(Player& p);
+  /// Sends `inner` (a whole packet) to a player inside its session's Sealed wrapping.
+  void send_sealed(Player& p, std::span<const uint8_t> inner);
+  void handle_session(Player& p, const wire::Packet& packet, Clock::time_point now);
   void send_tree(Player& p);
   void expire(Clock::time_point now);
   void remove_player(size_t index);
@@ -191,6 +196,7 @@ class Server {
   protocol::UdpSocket socket_;
   protocol::CookieJar cookies_;
   protocol::PacketWriter writer_;
+  protocol::PacketWriter seal_writer_;  ///< The Sealed wrapping around what writer_ holds.
   std::vector<uint8_t> receive_buffer_;
   std::vector<std::unique_ptr<Player>> players_;
   std::unordered_map<uint64_t, Player*> by_endpoint_;  ///< endpoint_key -> player

@@ -93,6 +93,9 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   held_ = {};
   num_commands_ = 0;
   sequence_ = ack_input_ = payload_since_ = 0;
+  key_pair_ = session_keypair();
+  sealer_ = Sealer{};
+  opener_ = Opener{};
   has_snapshot_ = has_own_avatar_ = false;
   snapshot_parts_seen_.reset();
   avatars_.clear();
@@ -154,10 +157,27 @@ void ClientConnection::take_datagram(std::span<const uint8_t> datagram, TimePoin
   handle(*packet, now);
 }
 
-void ClientConnection::handle(const wire::Packet& packet, TimePoint now) {
+void ClientConnection::handle(const wire::Packet& packet, TimePoint now, bool sealed) {
   const bool connecting = state_ == ClientState::kConnecting;
   const bool connected = state_ == ClientState::kConnected;
-  switch (packet.message_type()) {
+  // After the Accept, only our session's sealed messages count (and resent Accepts).
+  const wire::Message type = packet.message_type();
+  if (connected && !sealed && type != wire::Message::Accept && type != wire::Message::Sealed) {
+    drops_.add(DropReason::kUnauthenticated);
+    return;
+  }
+  switch (type) {
+    case wire::Message::Sealed: {
+      if (!connected || sealed) break;
+      DropReason reason = DropReason::kNone;
+      const wire::Packet* inner = opener_.open(*packet.message_as_Sealed(), reason);
+      if (inner == nullptr) {
+        drops_.add(reason);
+        return;
+      }
+      handle(*inner, now, true);
+      return;
+    }
     case wire::Message::Challenge:
       if (!connecting) break;
       on_challenge(*packet.message_as_Challenge(), now);
@@ -227,6 +247,16 @@ void ClientConnection::on_challenge(const wire::Challenge& m, TimePoint now) {
 }
 
 void ClientConnection::on_accept(const wire::Accept& m, TimePoint now) {
+  SessionKeys keys;
+  const auto* server_key = m.server_key();
+  if (server_key == nullptr || !session_keys_client(key_pair_, {server_key->data(), server_key->size()}, keys)) {
+    refuse_ = {wire::RefuseReason::ProtocolVersion, "no session key in the Accept", 0};
+    set_state(ClientState::kRefused, "refused: the server sent no session key (protocol version " +
+                                         std::to_string(kProtocolVersion) + " needs one)");
+    return;
+  }
+  sealer_.set(m.session(), keys.send);
+  opener_.set(m.session(), keys.receive);
   accept_.session = m.session();
   accept_.avatar = m.avatar();
   accept_.scene = m.scene() ? m.scene()->str() : std::string();
@@ -464,7 +494,7 @@ void ClientConnection::send_handshake(TimePoint now) {
   if (cookie_size_ == 0) {
     send(write_connect_request(writer_, library_hash_, name_));
   } else {
-    send(write_connect_response(writer_, library_hash_, {cookie_.data(), cookie_size_}, name_));
+    send(write_connect_response(writer_, library_hash_, {cookie_.data(), cookie_size_}, name_, key_pair_.public_key));
   }
   next_handshake_send_ = now + config_.handshake_resend;
 }
@@ -530,6 +560,7 @@ void ClientConnection::disconnect() {
 }
 
 void ClientConnection::send(std::span<const uint8_t> datagram) {
+  if (sealer_.ready()) datagram = sealer_.seal(seal_writer_, datagram);  // a session message
   if (up_) {
     up_->push(datagram, now_);  // sent by a later flush(), when due
   } else {

@@ -18,6 +18,7 @@
 #include "lookahead/control_input.hpp"
 #include "protocol/histogram.hpp"
 #include "protocol/impairment.hpp"
+#include "protocol/session_crypto.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/protocol.hpp"
 #include "protocol/udp_socket.hpp"
@@ -234,7 +235,8 @@ class ClientConnection {
   uint64_t tree_count() const { return tree_count_; }
 
  private:
-  void handle(const wire::Packet& packet, TimePoint now);
+  /// `sealed`: it came inside a Sealed message of our session (session messages must).
+  void handle(const wire::Packet& packet, TimePoint now, bool sealed = false);
   void on_challenge(const wire::Challenge& m, TimePoint now);
   void on_accept(const wire::Accept& m, TimePoint now);
   void on_refuse(const wire::Refuse& m);
@@ -293,6 +295,11 @@ class ClientConnection {
   std::vector<TerrainBodyState> terrain_bodies_;
   // The impairment layer (null when inactive): what we send waits in up_, what arrives in down_.
   std::unique_ptr<ImpairedQueue> up_, down_;
+  // The session's keys (session_crypto.hpp): made at start(), used from the Accept on.
+  SessionKeyPair key_pair_;
+  Sealer sealer_;
+  Opener opener_;
+  PacketWriter seal_writer_;
   TimePoint now_{};  ///< The latest time given to start / poll / flush (what send() stamps).
   std::vector<StrikeEventInfo> new_strike_events_;
   uint32_t last_strike_sequence_ = 0;

@@ -15,6 +15,8 @@ const char* drop_reason_name(DropReason reason) {
     case DropReason::kUnexpected: return "unexpected";
     case DropReason::kRateLimited: return "rate_limited";
     case DropReason::kInvalidInput: return "invalid_input";
+    case DropReason::kUnauthenticated: return "unauthenticated";
+    case DropReason::kReplayed: return "replayed";
     case DropReason::kCount: break;
   }
   return "unknown";
@@ -67,11 +69,12 @@ std::span<const uint8_t> write_connect_request(PacketWriter& w, uint64_t library
 
 std::span<const uint8_t> write_connect_response(PacketWriter& w, uint64_t library_hash,
                                                 std::span<const uint8_t> cookie,
-                                                std::string_view client_name) {
+                                                std::string_view client_name, std::span<const uint8_t> client_key) {
   auto& fbb = w.begin();
   const auto c = fbb.CreateVector(cookie.data(), cookie.size());
   const auto name = fbb.CreateString(client_name.substr(0, 64));
-  return w.finish(wire::CreateConnectResponse(fbb, kProtocolVersion, library_hash, c, name));
+  const auto key = client_key.empty() ? 0 : fbb.CreateVector(client_key.data(), client_key.size());
+  return w.finish(wire::CreateConnectResponse(fbb, kProtocolVersion, library_hash, c, name, key));
 }
 
 std::span<const uint8_t> write_heartbeat(PacketWriter& w, uint32_t session, uint32_t client_time_ms) {

@@ -27,6 +27,8 @@ enum class DropReason : uint8_t {
   kUnexpected,     ///< A message this side never receives, or from someone not in session.
   kRateLimited,
   kInvalidInput,   ///< Out-of-range values (direction longer than 1, ...).
+  kUnauthenticated,  ///< A session message not sealed, or sealed with the wrong key (forged).
+  kReplayed,       ///< A sealed message whose sequence was seen (or is too old for the window).
   kCount
 };
 const char* drop_reason_name(DropReason reason);
@@ -67,7 +69,8 @@ std::span<const uint8_t> write_connect_request(PacketWriter& w, uint64_t library
                                                std::string_view client_name);
 std::span<const uint8_t> write_connect_response(PacketWriter& w, uint64_t library_hash,
                                                 std::span<const uint8_t> cookie,
-                                                std::string_view client_name);
+                                                std::string_view client_name,
+                                                std::span<const uint8_t> client_key = {});
 std::span<const uint8_t> write_heartbeat(PacketWriter& w, uint32_t session, uint32_t client_time_ms);
 std::span<const uint8_t> write_disconnect(PacketWriter& w, uint32_t session);
 std::span<const uint8_t> write_stats_request(PacketWriter& w, uint32_t session);

@@ -6,7 +6,7 @@
 namespace foresight::protocol {
 
 /// Bumped whenever a peer of the previous version could misread a message.
-inline constexpr uint32_t kProtocolVersion = 4;  // 2: TreeNodeSample carries segment, heading; 3: fighters; 4: terrain bodies
+inline constexpr uint32_t kProtocolVersion = 5;  // 2: TreeNodeSample carries segment, heading; 3: fighters; 4: terrain bodies; 5: sealed sessions
 
 /// Largest datagram anyone sends: under the common 1280-byte IPv6 minimum MTU after headers, so
 /// nothing is ever fragmented.
@@ -51,8 +51,9 @@ inline constexpr size_t kMaxFighterJoints = 64;
 inline constexpr uint32_t kStrikeEventRepeatTicks = 30;
 
 /// Most nodes one TreeSummary samples: 12 bytes each (since they carry segment and heading for
-/// ghost poses; 128 when they were 8), so a full summary stays under kMaxDatagramBytes.
-inline constexpr size_t kMaxTreeSamples = 88;
+/// ghost poses; 128 when they were 8; 80 since sessions are sealed), so a full summary stays under
+/// kMaxDatagramBytes inside its Sealed wrapping.
+inline constexpr size_t kMaxTreeSamples = 80;
 /// TreeNodeSample::parent of the root.
 inline constexpr uint16_t kTreeNoParent = 0xFFFF;
 /// TreeNodeSample::flags bits.

@@ -4,6 +4,7 @@
 #include "protocol/input_packet.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/quantize.hpp"
+#include "protocol/session_crypto.hpp"
 #include "protocol/udp_socket.hpp"
 #include "server.hpp"
 
@@ -23,9 +24,29 @@ class RawClient {
   }
   void send(std::span<const uint8_t> bytes) { socket_.send(bytes, server_); }
   void send_raw(const std::vector<uint8_t>& bytes) { socket_.send(bytes, server_); }
+  /// A session message (a whole packet), sealed with this session's key as the protocol wants.
+  void send_session(std::span<const uint8_t> inner) { send(sealer_.seal(seal_writer_, inner)); }
+  /// The same, kept instead of sent (to replay or tamper with it).
+  std::vector<uint8_t> seal(std::span<const uint8_t> inner) {
+    const auto bytes = sealer_.seal(seal_writer_, inner);
+    return {bytes.begin(), bytes.end()};
+  }
 
-  /// Every datagram waiting (copied, so packets stay valid).
+  /// Every datagram waiting (copied, so packets stay valid); our session's Sealed ones opened (the
+  /// inner packet's bytes in their place; one that does not open is kept as it came).
   std::vector<std::vector<uint8_t>> receive_all() {
+    std::vector<std::vector<uint8_t>> out = receive_raw();
+    for (std::vector<uint8_t>& d : out) {
+      protocol::DropReason reason;
+      const wire::Packet* p = protocol::packet_read(d, reason);
+      const wire::Sealed* sealed = p ? p->message_as_Sealed() : nullptr;
+      if (sealed != nullptr && opener_.ready() && opener_.open(*sealed, reason) != nullptr)
+        d.assign(opener_.plain().begin(), opener_.plain().end());
+    }
+    return out;
+  }
+  /// Every datagram waiting, as it came off the wire.
+  std::vector<std::vector<uint8_t>> receive_raw() {
     std::vector<std::vector<uint8_t>> out;
     std::vector<uint8_t> buffer(protocol::kMaxDatagramBytes + 1);
     protocol::Endpoint from;
@@ -59,7 +80,8 @@ class RawClient {
     if (!challenge) return false;
     protocol::DropReason reason;
     const auto* cookie = protocol::packet_read(*challenge, reason)->message_as_Challenge()->cookie();
-    send(protocol::write_connect_response(writer_, library_hash, {cookie->data(), cookie->size()}, "test"));
+    send(protocol::write_connect_response(writer_, library_hash, {cookie->data(), cookie->size()}, "test",
+                                          keys_.public_key));
     for (int i = 0; i < 50; ++i) {
       s.run_tick(now += std::chrono::milliseconds(1));
       for (auto& d : receive_all()) {
@@ -68,6 +90,12 @@ class RawClient {
         if (const auto* a = p->message_as_Accept()) {
           session = a->session();
           avatar = a->avatar();
+          protocol::SessionKeys k;
+          const auto* server_key = a->server_key();
+          if (server_key == nullptr || !protocol::session_keys_client(keys_, {server_key->data(), server_key->size()}, k))
+            return false;
+          sealer_.set(session, k.send);
+          opener_.set(session, k.receive);
           return true;
         }
         if (p->message_as_Refuse() != nullptr) {
@@ -86,7 +114,7 @@ class RawClient {
     in.camera_yaw_rad = yaw_rad;
     in.crouch = crouch;
     const wire::InputCommand cmd = protocol::input_command_from(in, sequence);
-    send(protocol::write_input(writer_, session, 0, sequence, {&cmd, 1}));
+    send_session(protocol::write_input(writer_, session, 0, sequence, {&cmd, 1}));
   }
 
   uint32_t session = 0;
@@ -94,6 +122,10 @@ class RawClient {
   protocol::PacketWriter writer_;
 
  private:
+  protocol::SessionKeyPair keys_ = protocol::session_keypair();
+  protocol::Sealer sealer_;
+  protocol::Opener opener_;
+  protocol::PacketWriter seal_writer_;
   protocol::UdpSocket socket_;
   protocol::Endpoint server_;
 };

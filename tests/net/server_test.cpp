@@ -127,7 +127,9 @@ TEST(Server, GarbageAndTruncatedDatagramsAreDroppedAndCountedWhileAPlayerPlaysOn
   }
   attacker.send_raw(std::vector<uint8_t>(4000, 0xAB));  // oversized
   ++sent;
-  attacker.send_raw(valid);  // a well-formed Input from the wrong address: not its session
+  attacker.send_raw(valid);  // a well-formed Input, unsealed (and from the wrong address)
+  ++sent;
+  player.send_raw(valid);    // the same from the player's own address: still unsealed, so anyone's
   ++sent;
   uint32_t seq = 1;
   for (int i = 0; i < 60; ++i) {
@@ -140,7 +142,7 @@ TEST(Server, GarbageAndTruncatedDatagramsAreDroppedAndCountedWhileAPlayerPlaysOn
                 drops.by_reason[static_cast<size_t>(protocol::DropReason::kBadIdentifier)],
             0u);
   EXPECT_EQ(drops.by_reason[static_cast<size_t>(protocol::DropReason::kTooLarge)], 1u);
-  EXPECT_EQ(drops.by_reason[static_cast<size_t>(protocol::DropReason::kUnexpected)], 1u);
+  EXPECT_EQ(drops.by_reason[static_cast<size_t>(protocol::DropReason::kUnauthenticated)], 2u);
   EXPECT_EQ(r.server.num_players(), 1);
   ASSERT_NE(r.server.avatar(player.avatar), nullptr);
   EXPECT_TRUE(player.receive(wire::Message::Snapshot).has_value());
@@ -188,7 +190,7 @@ TEST(Server, ADisconnectEndsTheSessionAtOnce) {
   Running r;
   RawClient c(r.server.port());
   ASSERT_TRUE(c.connect(r.server, r.now, r.server.library().content_hash));
-  c.send(protocol::write_disconnect(c.writer_, c.session));
+  c.send_session(protocol::write_disconnect(c.writer_, c.session));
   r.ticks(1);
   EXPECT_EQ(r.server.num_players(), 0);
   EXPECT_EQ(r.server.counters().sessions_closed, 1u);
@@ -208,7 +210,7 @@ TEST(Server, ATreeRequestGetsASummaryOfTheRequestersOwnTree) {
   }
   c.receive_all();
   other.receive_all();
-  c.send(protocol::write_tree_request(c.writer_, c.session));
+  c.send_session(protocol::write_tree_request(c.writer_, c.session));
   r.ticks(1);
   const vec2 avatar_at = r.server.avatar(c.avatar)->root().pos_m;
   const auto reply = c.receive(wire::Message::TreeSummary);
@@ -253,8 +255,8 @@ TEST(Server, ATreeRequestGetsASummaryOfTheRequestersOwnTree) {
   // Another player's session, sent from another address, or a made-up session: dropped.
   const uint64_t unexpected_before =
       r.server.counters().drops.by_reason[static_cast<size_t>(protocol::DropReason::kUnexpected)];
-  other.send(protocol::write_tree_request(other.writer_, c.session));
-  c.send(protocol::write_tree_request(c.writer_, c.session + 1000));
+  other.send_session(protocol::write_tree_request(other.writer_, c.session));
+  c.send_session(protocol::write_tree_request(c.writer_, c.session + 1000));
   r.ticks(1);
   EXPECT_FALSE(other.receive(wire::Message::TreeSummary).has_value());
   EXPECT_FALSE(c.receive(wire::Message::TreeSummary).has_value());

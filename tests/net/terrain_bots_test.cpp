@@ -100,7 +100,7 @@ TEST(TerrainServer, ARawClientSteersItsTerrainAvatarInCameraSpaceAndGetsNoTree) 
   EXPECT_LT(std::abs(walked.y), 0.3f);
   // A tree request from a terrain player is ignored (no tree), the session and the tick go on.
   c.receive_all();
-  c.send(protocol::write_tree_request(c.writer_, c.session));
+  c.send_session(protocol::write_tree_request(c.writer_, c.session));
   server.run_tick(now += 33ms);
   EXPECT_FALSE(c.receive(wire::Message::TreeSummary).has_value());
   c.send_input(vec2(0.0f), seq++, kPi / 2);

@@ -3,6 +3,7 @@
 // refusals, timeouts and every kind of datagram the client must drop.
 #include "support/alloc_counter.hpp"
 #include "protocol/client_connection.hpp"
+#include "protocol/session_crypto.hpp"
 #include "protocol/input_packet.hpp"
 
 #include <gtest/gtest.h>
@@ -29,14 +30,24 @@ class FakeServer {
   }
   const Endpoint& endpoint() const { return endpoint_; }
 
-  /// The next datagram from the client (waits up to 1 s), or nullptr when none came.
+  /// The next datagram from the client (waits up to 1 s), or nullptr when none came; a Sealed
+  /// one of the session is opened (its inner packet returned). A ConnectResponse gives the
+  /// client's session key.
   const wire::Packet* receive() {
     if (!socket_.wait_readable(1000)) return nullptr;
     const ptrdiff_t n = socket_.receive(buffer_, client_);
     if (n < 0) return nullptr;
+    last_ = {buffer_.data(), static_cast<size_t>(n)};
     DropReason reason = DropReason::kNone;
-    return packet_read({buffer_.data(), static_cast<size_t>(n)}, reason);
+    const wire::Packet* p = packet_read(last_, reason);
+    if (p == nullptr) return nullptr;
+    if (const auto* r = p->message_as_ConnectResponse(); r && r->client_key())
+      client_key_.assign(r->client_key()->begin(), r->client_key()->end());
+    if (const auto* s = p->message_as_Sealed()) return opener_.open(*s, reason);
+    return p;
   }
+  /// The raw bytes of the last datagram received.
+  std::span<const uint8_t> last_datagram() const { return last_; }
   /// The next datagram of type T, skipping others; nullptr when none came.
   template <typename T>
   const T* receive_a() {
@@ -52,7 +63,17 @@ class FakeServer {
   void drain() {
     while (socket_.wait_readable(20)) socket_.receive(buffer_, client_);
   }
-  void send(std::span<const uint8_t> bytes) { socket_.send(bytes, client_); }
+  /// After the Accept, sealed as a real server does (what cannot be sealed goes as it is).
+  void send(std::span<const uint8_t> bytes) {
+    const auto sealed = sealer_.ready() ? sealer_.seal(seal_writer_, bytes) : std::span<const uint8_t>();
+    send_raw(sealed.empty() ? bytes : sealed);
+  }
+  void send_raw(std::span<const uint8_t> bytes) {
+    last_sent_.assign(bytes.begin(), bytes.end());
+    socket_.send(bytes, client_);
+  }
+  /// The last datagram sent, as it went on the wire.
+  const std::vector<uint8_t>& last_sent() const { return last_sent_; }
   PacketWriter& writer() { return writer_; }
 
   void send_challenge() {
@@ -61,9 +82,14 @@ class FakeServer {
     send(writer_.finish(wire::CreateChallenge(fbb, fbb.CreateVector(cookie, 8))));
   }
   void send_accept(uint32_t session, uint32_t avatar) {
+    SessionKeys keys;
+    EXPECT_TRUE(session_keys_server(keys_, client_key_, keys)) << "no client key seen";
     auto& fbb = writer_.begin();
-    send(writer_.finish(wire::CreateAccept(fbb, session, avatar, fbb.CreateString("maze"),
-                                           fbb.CreateString("default"), kHash, 60, 20)));
+    const auto key = fbb.CreateVector(keys_.public_key.data(), keys_.public_key.size());
+    send_raw(writer_.finish(wire::CreateAccept(fbb, session, avatar, fbb.CreateString("maze"),
+                                               fbb.CreateString("default"), kHash, 60, 20, key)));
+    sealer_.set(session, keys.send);
+    opener_.set(session, keys.receive);
   }
   void send_snapshot(uint32_t tick, uint8_t part, uint8_t parts, std::vector<uint32_t> ids,
                      uint32_t ack_input = 0, uint32_t echo = 0) {
@@ -80,6 +106,13 @@ class FakeServer {
   Endpoint client_;
   PacketWriter writer_;
   std::array<uint8_t, 2048> buffer_{};
+  std::span<const uint8_t> last_;
+  std::vector<uint8_t> last_sent_;
+  SessionKeyPair keys_ = session_keypair();
+  std::vector<uint8_t> client_key_;
+  Sealer sealer_;
+  Opener opener_;
+  PacketWriter seal_writer_;
 };
 
 /// Waits until the client's socket has something, then polls it at the injected time.
@@ -299,6 +332,32 @@ TEST_F(ClientConnectionTest, SilentServerIsGoneAfterFiveSeconds) {
   EXPECT_EQ(client_.state(), ClientState::kServerGone);
 }
 
+TEST_F(ClientConnectionTest, UnsealedOrForgedServerMessagesAreDroppedOnceConnected) {
+  connect();
+  // A snapshot not sealed with the session's key: anyone on the way could have sent it.
+  const wire::AvatarState avatar(7, 0, 0, -1, 0, 0, 0, 0, 0);
+  auto& fbb = server_.writer().begin();
+  server_.send_raw(server_.writer().finish(
+      wire::CreateSnapshot(fbb, 50, 0, 1, 0, 0, 0, fbb.CreateVectorOfStructs(&avatar, 1))));
+  deliver(client_, at(200));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kUnauthenticated)], 1u);
+  EXPECT_FALSE(client_.has_snapshot());
+  // A Sealed message with a made-up payload: forged.
+  auto& fbb2 = server_.writer().begin();
+  const std::vector<uint8_t> junk(80, 7);
+  server_.send_raw(server_.writer().finish(wire::CreateSealed(fbb2, 5, 1, fbb2.CreateVector(junk))));
+  deliver(client_, at(210));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kUnauthenticated)], 2u);
+  // The genuine, sealed one counts, and a copy of it is a replay.
+  server_.send_snapshot(51, 0, 1, {7});
+  deliver(client_, at(220));
+  EXPECT_TRUE(client_.has_snapshot());
+  EXPECT_EQ(client_.snapshot_tick(), 51u);
+  server_.send_raw(server_.last_sent());
+  deliver(client_, at(230));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kReplayed)], 1u);
+}
+
 TEST_F(ClientConnectionTest, ServerCanEndTheSession) {
   connect();
   PacketWriter w;
@@ -315,7 +374,7 @@ TEST_F(ClientConnectionTest, BadDatagramsAreDroppedByReason) {
   EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kBadIdentifier)], 1u);
 
   std::vector<uint8_t> huge(1500, 0);
-  server_.send(huge);
+  server_.send_raw(huge);
   deliver(client_, at(210));
   EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kTooLarge)], 1u);
 
