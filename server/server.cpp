@@ -443,7 +443,10 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
   // Verified (the cookie proves the address): queue it, once; admit_joins() takes a few per tick.
   const uint64_t key = endpoint_key(from);
   for (const PendingJoin& j : join_queue_)
-    if (j.key == key && same_endpoint(j.endpoint, from)) return;  // already waiting
+    if (j.key == key && same_endpoint(j.endpoint, from)) {  // already waiting: say so, it keeps waiting
+      send_refuse(from, wire::RefuseReason::Queued, "waiting to join: the server admits a few players a tick");
+      return;
+    }
   if (!join_queue_.empty()) ++counters_.joins_deferred;
   PendingJoin join{from, key, m.client_name() ? m.client_name()->str().substr(0, 64) : std::string(), {}};
   std::copy(client_key->begin(), client_key->end(), join.client_key.begin());
@@ -542,7 +545,7 @@ void Server::send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason
   auto& fbb = writer_.begin();
   const auto text = fbb.CreateString(message);
   send(writer_.finish(wire::CreateRefuse(fbb, reason, text, library_.content_hash)), to);
-  if (reason != wire::RefuseReason::ShuttingDown) ++counters_.refused;
+  if (reason != wire::RefuseReason::ShuttingDown && reason != wire::RefuseReason::Queued) ++counters_.refused;
 }
 
 void Server::send_accept(const Player& p) {

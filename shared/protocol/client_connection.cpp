@@ -86,7 +86,7 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   library_hash_ = library_hash;
   name_ = std::move(name);
   cookie_size_ = 0;
-  started_at_ = now;
+  started_at_ = handshake_since_ = now;
   accepted_at_ = last_heard_ = now;
   accept_ = {};
   refuse_ = {};
@@ -194,6 +194,11 @@ void ClientConnection::handle(const wire::Packet& packet, TimePoint now, bool se
       }
       break;
     case wire::Message::Refuse:
+      if (connecting && packet.message_as_Refuse()->reason() == wire::RefuseReason::Queued) {
+        handshake_since_ = now;  // verified and queued: the handshake's timeout starts again
+        status_ = "connecting to " + endpoint_text(server_) + " (queued to join) ...";
+        return;
+      }
       if (connecting) {
         on_refuse(*packet.message_as_Refuse());
         return;
@@ -471,7 +476,7 @@ void ClientConnection::release_sends(TimePoint now) {
 
 void ClientConnection::flush_messages(TimePoint now) {
   if (state_ == ClientState::kConnecting) {
-    if (now - started_at_ >= config_.handshake_timeout) {
+    if (now - handshake_since_ >= config_.handshake_timeout) {
       set_state(ClientState::kTimedOut,
                 "no answer from " + endpoint_text(server_) + " within " +
                     std::to_string(config_.handshake_timeout.count()) + " ms" +

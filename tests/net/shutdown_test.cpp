@@ -108,3 +108,28 @@ TEST(Churn, BotsLeaveAndJoinAgainAsNewSessions) {
 
 }  // namespace
 }  // namespace foresight
+
+namespace foresight {
+namespace {
+
+TEST(JoinQueue, ACrowdLargerThanTheHandshakeTimeoutAllowsAllGetsIn) {
+  // One join a tick: 180 bots need 6 s, more than the 5 s handshake timeout. The server tells the
+  // waiting ones they are queued, which restarts their timeout: nobody gives up.
+  server::ServerConfig c = test::test_server_config("field");
+  c.max_joins_per_tick = 1;
+  c.expansions_per_avatar = 20;
+  test::BotMatch m(c, 180, bots::BotScript::kWander);
+  m.config.connects_per_frame = 180;
+  bots::BotFleet fleet(m.server.library(), m.config);
+  m.play(fleet, 30 * 8);
+  const bots::BotReport r = fleet.report(m.now);
+  EXPECT_EQ(r.timed_out, 0);
+  EXPECT_EQ(r.connected_at_end, 180);
+  EXPECT_EQ(m.server.num_players(), 180);
+  EXPECT_EQ(m.server.counters().refused, 0u) << "\"queued\" is not a refusal";
+  EXPECT_GT(m.server.counters().joins_deferred, 100u);
+  fleet.disconnect_all();
+}
+
+}  // namespace
+}  // namespace foresight
