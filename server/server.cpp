@@ -215,8 +215,10 @@ void Server::publish_admin(Clock::time_point now) {
   m.max_players = config_.max_players;
   m.fighters = num_fighters_;
   m.joins_waiting = static_cast<int>(join_queue_.size());
-  if (m.scene.empty()) m.scene = scene_.name;  // once: no allocation per tick
-  m.locomotion = terrain_mode_ ? "terrain" : "graph";
+  if (m.scene.empty()) {  // once: no allocation per tick
+    m.scene = scene_.name;
+    m.locomotion = terrain_mode_ ? "terrain" : "graph";
+  }
   m.strategy = strategy_name(config_.strategy);
   m.budget_limit_ms = config_.lookahead_budget_ms;
   m.margin_ms = config_.tick_safety_margin_ms;
@@ -338,29 +340,28 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
   handle_session(*p, *inner, now);
 }
 
-void Server::handle_session(Player& player, const wire::Packet& packet, Clock::time_point now) {
+void Server::handle_session(Player& p, const wire::Packet& packet, Clock::time_point now) {
   using wire::Message;
-  Player* p = &player;
   uint32_t session = 0;
   if (auto* m = packet.message_as_Input()) session = m->session();
   if (auto* m = packet.message_as_Heartbeat()) session = m->session();
   if (auto* m = packet.message_as_Disconnect()) session = m->session();
   if (auto* m = packet.message_as_StatsRequest()) session = m->session();
   if (auto* m = packet.message_as_TreeRequest()) session = m->session();
-  if (p->session != session) {  // sealed by this session's key, yet naming another
+  if (p.session != session) {  // sealed by this session's key, yet naming another
     counters_.drops.add(protocol::DropReason::kUnexpected);
     return;
   }
-  p->last_heard = now;
+  p.last_heard = now;
   switch (packet.message_type()) {
-    case Message::Input: on_input(*p, *packet.message_as_Input()); break;
-    case Message::Heartbeat: p->echo_client_time_ms = packet.message_as_Heartbeat()->client_time_ms(); break;
-    case Message::StatsRequest: send_stats(*p); break;
-    case Message::TreeRequest: send_tree(*p); break;
+    case Message::Input: on_input(p, *packet.message_as_Input()); break;
+    case Message::Heartbeat: p.echo_client_time_ms = packet.message_as_Heartbeat()->client_time_ms(); break;
+    case Message::StatsRequest: send_stats(p); break;
+    case Message::TreeRequest: send_tree(p); break;
     case Message::Disconnect:
       ++counters_.sessions_closed;
       for (size_t i = 0; i < players_.size(); ++i)
-        if (players_[i].get() == p) {
+        if (players_[i].get() == &p) {
           remove_player(i);
           break;
         }

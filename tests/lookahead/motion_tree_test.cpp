@@ -1,4 +1,5 @@
 #include "lookahead/motion_tree.hpp"
+#include "support/segments.hpp"
 
 #include "lookahead_fixture.hpp"
 
@@ -12,16 +13,7 @@ namespace {
 using test::default_library;
 using test::loaded_scene;
 
-// A walking segment (moves forward at least 0.3 m) to root trees in, so children exist at once.
-int walk_segment(const MotionLibrary& lib) {
-  for (int s = 0; s < lib.graph.num_segments(); ++s) {
-    const uint32_t tags = lib.graph.segments[s].tags;
-    if ((tags & kTagLocomotion) && !(tags & (kTagCrouch | kTagRun | kTagTurn)) &&
-        lib.segment_motion[s].end.pos_m.y > 0.3f)
-      return s;
-  }
-  return 0;
-}
+using test::walk_segment;
 
 MotionTreeConfig config_for(Strategy s, int max_nodes = 4096) {
   MotionTreeConfig c;

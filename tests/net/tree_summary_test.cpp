@@ -2,6 +2,7 @@
 // segment and start heading, so a client rebuilds the node's clip (ghost poses) from the summary
 // alone, and a full summary fits one datagram.
 #include "tree_summary.hpp"
+#include "support/segments.hpp"
 
 #include "library/library_source.hpp"
 #include "protocol/quantize.hpp"
@@ -16,16 +17,7 @@
 namespace foresight {
 namespace {
 
-// A walking segment, so the tree grows children at once.
-int walk_segment(const MotionLibrary& lib) {
-  for (int s = 0; s < lib.graph.num_segments(); ++s) {
-    const uint32_t tags = lib.graph.segments[s].tags;
-    if ((tags & kTagLocomotion) && !(tags & (kTagCrouch | kTagRun | kTagTurn)) &&
-        lib.segment_motion[s].end.pos_m.y > 0.3f)
-      return s;
-  }
-  return 0;
-}
+using test::walk_segment;
 
 TEST(TreeSummary, SamplesCarryTheirNodesSegmentAndStartHeading) {
   const MotionLibrary lib = motion_library_default();

@@ -62,9 +62,9 @@ TEST(Impairment, SharesAndDelaysAreWhatWasAskedFor) {
   int late = 0, overtaken = 0;
   for (size_t i = 0; i < got.size(); ++i) {
     EXPECT_GE(got[i].delay_ms, 30.0 - 1.0);  // 1 ms release granularity
-    const bool held_back = got[i].delay_ms > 71.0;
-    late += held_back;
-    EXPECT_LE(got[i].delay_ms, held_back ? 50 + 20 + 20 + 20 + 1.0 : 71.0);
+    // latency + jitter, plus for a held-back one jitter + 20 ms more (1 ms release granularity).
+    EXPECT_LE(got[i].delay_ms, 50 + 20 + 20 + 20 + 1.0);
+    late += got[i].delay_ms > 71.0;
     if (i > 0 && got[i].id < got[i - 1].id) ++overtaken;
   }
   // Held back: about 1 % (the reorder share, a few of them within the jitter's reach); every
