@@ -1,6 +1,7 @@
 // libFuzzer: any datagram through the packet decoder (protocol/packet.hpp: size checks, file
 // identifier, FlatBuffers verifier with our depth and table limits), then every field of the
 // message read the way its receiver reads it. A verified packet must never read out of bounds.
+#include "fuzz_history.hpp"
 #include "protocol/input_packet.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/quantize.hpp"
@@ -29,10 +30,15 @@ void take(const flatbuffers::Vector<uint8_t>* v) {
 
 void walk(const wire::Snapshot& m) {
   take(m.tick()), take(m.part()), take(m.parts()), take(m.ack_input()), take(m.server_time_ms());
-  if (const auto* list = m.avatars())
-    for (const wire::AvatarState* a : *list)
-      take(a->id() + static_cast<uint32_t>(a->start_x_mm()) + a->segment() + a->frame() + a->flags() +
-           static_cast<uint32_t>(a->transition()));
+  // Packed avatars against a history holding one earlier snapshot (references to it resolve,
+  // others are missing baselines).
+  static const protocol::AvatarHistory history = fuzz::fuzz_history();
+  static std::vector<wire::AvatarState> avatars;
+  avatars.clear();
+  take(static_cast<int>(protocol::snapshot_avatars(m, history, avatars)));
+  for (const wire::AvatarState& a : avatars)
+    take(a.id() + static_cast<uint32_t>(a.start_x_mm()) + a.segment() + a.frame() + a.flags() +
+         static_cast<uint32_t>(a.transition()));
   if (const auto* list = m.fighters())
     for (const wire::FighterPose* f : *list) {
       take(f->avatar() + f->morphology() + static_cast<uint32_t>(f->pelvis_y_mm()));

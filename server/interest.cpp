@@ -26,8 +26,9 @@ void InterestGrid::near(vec2 at, float radius_m, std::vector<uint32_t>& out) con
   const vec2 c = at / cell_m_;
   const int cx = static_cast<int>(std::floor(c.x)), cz = static_cast<int>(std::floor(c.y));
   const float r2 = radius_m * radius_m;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dx = -1; dx <= 1; ++dx) {
+  const int rings = std::max(1, static_cast<int>(std::ceil(radius_m / cell_m_)));
+  for (int dz = -rings; dz <= rings; ++dz)
+    for (int dx = -rings; dx <= rings; ++dx) {
       const int64_t k = key(cx + dx, cz + dz);
       const auto it = std::lower_bound(cells_.begin(), cells_.end(), std::pair<int64_t, uint32_t>{k, 0});
       if (it == cells_.end() || it->first != k) continue;
@@ -40,16 +41,21 @@ void InterestGrid::near(vec2 at, float radius_m, std::vector<uint32_t>& out) con
 }
 
 void select_interest(const InterestGrid& grid, std::span<const vec2> positions, uint32_t own, float radius_m,
-                     bool far_due, std::vector<uint32_t>& out, std::vector<uint8_t>& far) {
+                     bool far_due, float far_radius_m, std::vector<uint32_t>& out, std::vector<uint8_t>& far) {
   out.clear();
   far.assign(positions.size(), 0);
   if (far_due) {
-    // Everyone: mark who is far.
+    if (far_radius_m > radius_m) {
+      grid.near(positions[own], far_radius_m, out);
+      std::sort(out.begin(), out.end());
+    } else {
+      for (uint32_t i = 0; i < positions.size(); ++i) out.push_back(i);  // everyone
+    }
+    // Mark who is far.
     const float r2 = radius_m * radius_m;
-    for (uint32_t i = 0; i < positions.size(); ++i) {
+    for (uint32_t i : out) {
       const vec2 d = positions[i] - positions[own];
       far[i] = i != own && glm::dot(d, d) > r2;
-      out.push_back(i);
     }
     return;
   }

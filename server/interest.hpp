@@ -1,8 +1,9 @@
 #pragma once
 // Interest management (issue 8, docs/SERVER.md "Interest management"): which avatars go into one
 // client's snapshot. Avatars within interest_radius_m of the client's own avatar go in every
-// snapshot; the others only in every far_every-th one (0: never), staggered by client so the far
-// avatars' bytes spread over the snapshots. A uniform grid with cells of the radius finds the near
+// snapshot; the others only in every far_every-th one (0: never), and beyond far_radius_m (if set)
+// not at all; staggered by client so the far avatars' bytes spread over the snapshots. A uniform
+// grid with cells of the radius finds the near
 // ones in the 3 x 3 cells around the client; the grid is rebuilt once per snapshot (no allocation
 // once its vectors have grown).
 #include "math/types.hpp"
@@ -17,8 +18,8 @@ class InterestGrid {
  public:
   /// Buckets `positions` (ground x, z) into cells of `cell_m` (> 0).
   void build(std::span<const vec2> positions, float cell_m);
-  /// Appends to `out` the indices of the positions within radius_m of `at` (radius <= cell_m),
-  /// unsorted. Each index at most once.
+  /// Appends to `out` the indices of the positions within radius_m of `at`, unsorted. Each index
+  /// at most once. Looks at the cells within radius_m (3 x 3 when radius_m <= cell_m).
   void near(vec2 at, float radius_m, std::vector<uint32_t>& out) const;
 
  private:
@@ -32,9 +33,10 @@ class InterestGrid {
 };
 
 /// The avatars one client gets in this snapshot, as indices into `positions` in ascending order
-/// (the snapshot's avatar order): `own` always; within `radius_m` always; the rest when `far_due`.
-/// `far` is set for those beyond the radius (the client then knows they come less often).
+/// (the snapshot's avatar order): `own` always; within `radius_m` always; when `far_due` the rest
+/// within `far_radius_m` (everyone if it is not larger than radius_m). `far` is set for those
+/// beyond radius_m (the client then knows they come less often).
 void select_interest(const InterestGrid& grid, std::span<const vec2> positions, uint32_t own, float radius_m,
-                     bool far_due, std::vector<uint32_t>& out, std::vector<uint8_t>& far);
+                     bool far_due, float far_radius_m, std::vector<uint32_t>& out, std::vector<uint8_t>& far);
 
 }  // namespace foresight::server

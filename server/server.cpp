@@ -251,7 +251,7 @@ void Server::log_status() const {
                "receive %.2f, look-ahead %.1f of %.1f, advance %.2f, send %.2f; %lld expansions/tick, tree "
                "size mean %.0f min %d; %llu packets in, %llu dropped; joins %llu (%llu deferred, %llu refused); "
                "%llu avatar contacts; %d fighters, %llu strikes, %llu hits; terrain %.2f ms/tick, %llu steps, "
-               "%llu turns on the spot, %llu refusals\n",
+               "%llu turns on the spot, %llu refusals; %.0f %% of avatars delta-coded\n",
                tick_, num_players(), stats_.tick_ms_percentile(50), stats_.tick_ms_percentile(99),
                static_cast<unsigned long long>(stats_.overruns()), mean.receive_ms, mean.lookahead_ms,
                mean.budget_ms, mean.advance_ms, mean.send_ms,
@@ -266,7 +266,10 @@ void Server::log_status() const {
                static_cast<unsigned long long>(counters_.fighter_hits), mean.terrain_ms,
                static_cast<unsigned long long>(counters_.terrain_steps),
                static_cast<unsigned long long>(counters_.terrain_pivots),
-               static_cast<unsigned long long>(counters_.terrain_refusals));
+               static_cast<unsigned long long>(counters_.terrain_refusals),
+               counters_.avatars_sent ? 100.0 * static_cast<double>(counters_.avatars_referenced) /
+                                            static_cast<double>(counters_.avatars_sent)
+                                      : 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -508,7 +511,8 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
 }
 
 void Server::on_input(Player& p, const wire::Input& m) {
-  p.ack_snapshot = std::max(p.ack_snapshot, m.ack_snapshot());
+  // The client holds that snapshot whole: later ones may code its avatars against it.
+  p.sent_avatars.acknowledge(m.ack_snapshot());
   p.echo_client_time_ms = m.client_time_ms();
   const auto* commands = m.commands();
   if (commands == nullptr || commands->size() == 0) return;
@@ -601,7 +605,14 @@ void Server::send_snapshots(Clock::time_point now) {
   snapshot_terrain_.clear();
   terrain_before_.clear();
   snapshot_positions_.clear();
-  for (const auto& p : players_) {
+  // In id order: a client's view (increasing indices into these arrays) is then sorted by id, as
+  // the packed avatars want it.
+  by_id_.resize(players_.size());
+  for (size_t i = 0; i < players_.size(); ++i) by_id_[i] = static_cast<uint32_t>(i);
+  std::sort(by_id_.begin(), by_id_.end(),
+            [this](uint32_t a, uint32_t b) { return players_[a]->avatar_id < players_[b]->avatar_id; });
+  for (uint32_t index : by_id_) {
+    const auto& p = players_[index];
     terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
     snapshot_positions_.push_back(p->terrain ? terrain::terrain_avatar_ground(*p->terrain) : p->avatar->root().pos_m);
     if (p->terrain) {
@@ -627,17 +638,17 @@ void Server::send_snapshots(Clock::time_point now) {
   const bool interest = config_.interest_radius_m > 0;
   if (interest) interest_grid_.build(snapshot_positions_, config_.interest_radius_m);
   const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
-  for (size_t receiver = 0; receiver < players_.size(); ++receiver) {
-    Player& p = *players_[receiver];
+  for (size_t receiver = 0; receiver < by_id_.size(); ++receiver) {
+    Player& p = *players_[by_id_[receiver]];
     if (p.is_fighter()) continue;
     build_view(receiver, interest);
+    avatar_encoder_.plan(view_states_, snapshot_tick_, static_cast<uint32_t>(tick_), p.sent_avatars);
     plan_snapshot_parts();
     const auto parts = static_cast<uint8_t>(snapshot_parts_.size());
     for (size_t part = 0; part < snapshot_parts_.size(); ++part) {
       const SnapshotPart& plan = snapshot_parts_[part];
       auto& fbb = writer_.begin();
-      const auto avatars =
-          fbb.CreateVectorOfStructs(view_states_.data() + plan.avatars_begin, plan.avatars_end - plan.avatars_begin);
+      const auto avatar_bits = fbb.CreateVector(part_bits_[part]);
       flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::FighterPose>>> fighters = 0;
       if (plan.fighters_end > plan.fighters_begin) {
         fighter_offsets_.clear();
@@ -658,9 +669,15 @@ void Server::send_snapshots(Clock::time_point now) {
       if (plan.events && !snapshot_events_.empty())
         events = fbb.CreateVectorOfStructs(snapshot_events_.data(), snapshot_events_.size());
       send_sealed(p, writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts,
-                                                         p.last_input_seq, p.echo_client_time_ms, server_ms, avatars,
-                                                         fighters, events, terrain_bodies)));
+                                                         p.last_input_seq, p.echo_client_time_ms, server_ms, fighters,
+                                                         events, terrain_bodies,
+                                                         static_cast<uint16_t>(plan.avatars_end - plan.avatars_begin),
+                                                         avatar_bits)));
     }
+    protocol::AvatarHistory::Slot& sent = p.sent_avatars.start(snapshot_tick_, static_cast<uint32_t>(tick_));
+    sent.avatars.assign(view_states_.begin(), view_states_.end());
+    counters_.avatars_sent += view_states_.size();
+    counters_.avatars_referenced += avatar_encoder_.referenced();
   }
 }
 
@@ -670,9 +687,9 @@ void Server::build_view(size_t receiver, bool interest) {
   const uint32_t n = static_cast<uint32_t>(snapshot_states_.size());
   if (interest) {
     const bool far_due = config_.far_every > 0 &&
-                         (snapshot_tick_ + players_[receiver]->avatar_id) % static_cast<uint32_t>(config_.far_every) == 0;
+                         (snapshot_tick_ + players_[by_id_[receiver]]->avatar_id) % static_cast<uint32_t>(config_.far_every) == 0;
     select_interest(interest_grid_, snapshot_positions_, static_cast<uint32_t>(receiver), config_.interest_radius_m,
-                    far_due, view_index_, view_far_);
+                    far_due, config_.far_radius_m, view_index_, view_far_);
   } else {
     view_index_.resize(n);
     for (uint32_t i = 0; i < n; ++i) view_index_[i] = i;
@@ -693,8 +710,8 @@ void Server::build_view(size_t receiver, bool interest) {
 }
 
 // Parts of one client's view under the datagram budget: fighters' poses first, the strike events
-// in part 0, then the avatars. Sizes are upper bounds of what FlatBuffers writes (tables: vtable
-// and alignment).
+// in part 0, then the avatars, packed (avatar_delta.hpp) into part_bits_ as they are planned.
+// Sizes are upper bounds of what FlatBuffers writes (tables: vtable and alignment).
 void Server::plan_snapshot_parts() {
   // Header, vectors, Snapshot table, and the Sealed wrapping around it.
   constexpr size_t kBudget = protocol::kMaxDatagramBytes - 100 - protocol::kSealOverheadBytes;
@@ -710,12 +727,17 @@ void Server::plan_snapshot_parts() {
       bytes += 64 + 4 * fighter_poses_[fighter++].num_rotations;
     part.fighters_end = fighter;
     part.avatars_begin = avatar;
-    while (avatar < view_states_.size()) {
+    if (part_bits_.size() <= snapshot_parts_.size()) part_bits_.resize(snapshot_parts_.size() + 1);
+    protocol::BitWriter bits(part_bits_[snapshot_parts_.size()]);
+    avatar_encoder_.begin_part(bits);
+    while (avatar < view_states_.size() && avatar - part.avatars_begin < UINT16_MAX) {
       const size_t body = (view_terrain_before_[avatar + 1] - view_terrain_before_[avatar]) * sizeof(wire::TerrainBody);
-      if (bytes + sizeof(wire::AvatarState) + body > kBudget) break;
-      bytes += sizeof(wire::AvatarState) + body;
+      if (bytes + bits.bytes() + protocol::AvatarDeltaEncoder::kMaxAvatarBytes + body > kBudget) break;
+      avatar_encoder_.add(avatar, bits);
+      bytes += body;
       ++avatar;
     }
+    bits.finish();
     part.avatars_end = avatar;
     snapshot_parts_.push_back(part);
   } while ((fighter < fighter_poses_.size() || avatar < view_states_.size()) && snapshot_parts_.size() < 255);

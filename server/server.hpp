@@ -23,6 +23,7 @@
 #include "fighters/fighter_npc.hpp"
 #include "interest.hpp"
 #include "lookahead_workers.hpp"
+#include "protocol/avatar_delta.hpp"
 #include "protocol/cookie.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/session_crypto.hpp"
@@ -69,6 +70,8 @@ struct ServerCounters {
   uint64_t terrain_steps = 0;     ///< Steps terrain avatars committed.
   uint64_t terrain_pivots = 0;    ///< Turns on the spot.
   uint64_t terrain_refusals = 0;  ///< Plans that failed or were vetoed (the avatar stood).
+  uint64_t avatars_sent = 0;        ///< Avatar states in snapshots, over all clients.
+  uint64_t avatars_referenced = 0;  ///< Of those, delta-coded against an acknowledged snapshot.
   protocol::DropCounters drops;
 };
 
@@ -232,6 +235,9 @@ class Server {
   std::vector<wire::AvatarState> view_states_;
   std::vector<wire::TerrainBody> view_terrain_;
   std::vector<uint32_t> view_terrain_before_;
+  std::vector<uint32_t> by_id_;                      ///< players_ indices by avatar id (snapshot order).
+  protocol::AvatarDeltaEncoder avatar_encoder_;      ///< The view's avatars, packed per part.
+  std::vector<std::vector<uint8_t>> part_bits_;      ///< Per part, its packed avatars (reused).
   bool terrain_mode_ = false;
   terrain::TerrainAvatarConfig terrain_config_;
   std::vector<terrain::TerrainNeighbour> terrain_neighbours_;  ///< Reused per planning avatar.

@@ -54,6 +54,8 @@ struct ServerConfig {
   /// snapshot, the others every far_every-th (0: never). 0 m: everyone in every snapshot.
   float interest_radius_m = 0.0f;
   int far_every = 4;
+  /// Beyond this (when larger than interest_radius_m) an avatar is not sent at all; 0: no limit.
+  float far_radius_m = 0.0f;
   // The admin endpoint (admin_http.hpp): loopback unless told otherwise, behind a token.
   std::string admin_bind = "127.0.0.1";
   int admin_port = 7778;           ///< -1: no endpoint; 0: any free port.

@@ -86,6 +86,10 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
   app.add_option("--far-every", c.far_every, "Farther avatars go into every N-th snapshot (0: never)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
+  app.add_option("--far-radius-m", c.far_radius_m,
+                 "With --interest-radius-m: avatars farther than this are not sent at all (0: no limit)")
+      ->check(CLI::Range(0.0, 10000.0))
+      ->capture_default_str();
   app.add_option("--admin-bind", c.admin_bind, "Admin endpoint address (loopback by default)")->capture_default_str();
   app.add_option("--admin-port", c.admin_port, "Admin endpoint TCP port (-1: none; 0: any free port)")
       ->check(CLI::Range(-1, 65535))

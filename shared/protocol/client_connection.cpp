@@ -55,6 +55,8 @@ const char* client_state_name(ClientState state) {
 
 ClientConnection::ClientConnection(const ClientConfig& config) : config_(config) {
   avatars_.reserve(config_.reserve_avatars);
+  decoded_.reserve(config_.reserve_avatars);
+  history_.reserve(config_.reserve_avatars);
   fighters_.reserve(16);
   terrain_bodies_.reserve(config_.reserve_avatars);
   if (config_.impairment.active()) {
@@ -98,6 +100,8 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   opener_ = Opener{};
   has_snapshot_ = has_own_avatar_ = false;
   snapshot_parts_seen_.reset();
+  history_.clear();
+  acked_snapshot_ = ack_sent_ = 0;
   avatars_.clear();
   fighters_.clear();
   terrain_bodies_.clear();
@@ -317,6 +321,12 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     drops_.add(DropReason::kInvalidInput);
     return;
   }
+  if (has_snapshot_ && tick != snapshot_tick_ && !newer(tick, snapshot_tick_)) return;  // superseded
+  decoded_.clear();
+  if (const AvatarDecodeStatus status = snapshot_avatars(m, history_, decoded_); status != AvatarDecodeStatus::kOk) {
+    drops_.add(status == AvatarDecodeStatus::kMissingBaseline ? DropReason::kMissingBaseline : DropReason::kInvalidInput);
+    return;
+  }
   if (!has_snapshot_ || newer(tick, snapshot_tick_)) {
     if (has_snapshot_) snapshot_interval_ms_.add(ms_between(last_new_tick_at_, now));
     has_snapshot_ = true;
@@ -328,8 +338,6 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     terrain_bodies_.clear();
     last_new_tick_at_ = now;
     ++snapshot_ticks_;
-  } else if (tick != snapshot_tick_) {
-    return;  // a late part of an older tick: valid, but superseded
   } else if (parts != snapshot_parts_) {
     drops_.add(DropReason::kInvalidInput);
     return;
@@ -338,15 +346,22 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
   snapshot_parts_seen_.set(static_cast<size_t>(part));
   ++snapshot_packets_;
 
-  if (const auto* list = m.avatars()) {
-    for (const wire::AvatarState* a : *list) {
-      avatars_.push_back(*a);
-      if (a->id() == accept_.avatar || (a->flags() & kAvatarYours) != 0) {
-        own_avatar_ = *a;
-        own_avatar_tick_ = tick;
-        has_own_avatar_ = true;
-      }
+  for (const wire::AvatarState& a : decoded_) {
+    avatars_.push_back(a);
+    if (a.id() == accept_.avatar || (a.flags() & kAvatarYours) != 0) {
+      own_avatar_ = a;
+      own_avatar_tick_ = tick;
+      has_own_avatar_ = true;
     }
+  }
+  if (snapshot_parts_seen_.count() == static_cast<size_t>(parts)) {
+    // Whole: later snapshots may refer to it, so it is what we acknowledge.
+    AvatarHistory::Slot& slot = history_.start(tick, 0);
+    slot.avatars.assign(avatars_.begin(), avatars_.end());
+    std::sort(slot.avatars.begin(), slot.avatars.end(),
+              [](const wire::AvatarState& a, const wire::AvatarState& b) { return a.id() < b.id(); });
+    slot.usable = true;
+    acked_snapshot_ = tick;
   }
   if (const auto* list = m.fighters()) {
     for (const wire::FighterPose* f : *list) {
@@ -512,7 +527,13 @@ void ClientConnection::send_input(TimePoint now) {
   const bool idle = same && is_stop(next) && !newer(payload_since_, ack_input_);
   const uint32_t time_ms = client_time_ms(now);
   if (idle) {
-    if (now - last_packet_sent_ >= config_.heartbeat_interval) {
+    if (acked_snapshot_ != ack_sent_) {
+      // An Input without commands: the acknowledgement the server codes our snapshots against.
+      remember_send_time(time_ms, now);
+      send(write_input(writer_, accept_.session, acked_snapshot_, time_ms, {}));
+      ack_sent_ = acked_snapshot_;
+      last_packet_sent_ = now;
+    } else if (now - last_packet_sent_ >= config_.heartbeat_interval) {
       remember_send_time(time_ms, now);
       send(write_heartbeat(writer_, accept_.session, time_ms));
       last_packet_sent_ = now;
@@ -528,8 +549,9 @@ void ClientConnection::send_input(TimePoint now) {
   }
   commands_[static_cast<size_t>(num_commands_++)] = next;
   remember_send_time(time_ms, now);
-  send(write_input(writer_, accept_.session, snapshot_tick_, time_ms,
+  send(write_input(writer_, accept_.session, acked_snapshot_, time_ms,
                    {commands_.data(), static_cast<size_t>(num_commands_)}));
+  ack_sent_ = acked_snapshot_;
   ++inputs_sent_;
   last_input_sent_ = last_packet_sent_ = now;
 }

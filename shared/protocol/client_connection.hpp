@@ -16,6 +16,7 @@
 // Once warm, nothing here allocates per packet: the avatar list is reserved (it grows only when
 // a snapshot holds more avatars than ever before), strings are built on state changes only.
 #include "lookahead/control_input.hpp"
+#include "protocol/avatar_delta.hpp"
 #include "protocol/histogram.hpp"
 #include "protocol/impairment.hpp"
 #include "protocol/session_crypto.hpp"
@@ -195,6 +196,8 @@ class ClientConnection {
   // it; parts of older ticks are ignored.
   bool has_snapshot() const { return has_snapshot_; }
   uint32_t snapshot_tick() const { return snapshot_tick_; }
+  /// The newest snapshot received whole (every part), which Inputs acknowledge; 0 before one.
+  uint32_t acked_snapshot() const { return acked_snapshot_; }
   int snapshot_parts() const { return snapshot_parts_; }
   int snapshot_parts_received() const { return static_cast<int>(snapshot_parts_seen_.count()); }
   std::span<const wire::AvatarState> avatars() const { return avatars_; }
@@ -292,6 +295,10 @@ class ClientConnection {
   int snapshot_parts_ = 0;
   std::bitset<256> snapshot_parts_seen_;
   std::vector<wire::AvatarState> avatars_;
+  std::vector<wire::AvatarState> decoded_;  ///< Scratch: one part's avatars.
+  AvatarHistory history_;                   ///< Snapshots held whole, for the packed avatars' references.
+  uint32_t acked_snapshot_ = 0;             ///< The newest of them (sent in every Input).
+  uint32_t ack_sent_ = 0;                   ///< acked_snapshot_ as last sent: an idle client sends it when it changes.
   std::vector<FighterPoseState> fighters_;
   std::vector<TerrainBodyState> terrain_bodies_;
   // The impairment layer (null when inactive): what we send waits in up_, what arrives in down_.

@@ -17,6 +17,7 @@ const char* drop_reason_name(DropReason reason) {
     case DropReason::kInvalidInput: return "invalid_input";
     case DropReason::kUnauthenticated: return "unauthenticated";
     case DropReason::kReplayed: return "replayed";
+    case DropReason::kMissingBaseline: return "missing_baseline";
     case DropReason::kCount: break;
   }
   return "unknown";

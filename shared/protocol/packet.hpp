@@ -29,6 +29,7 @@ enum class DropReason : uint8_t {
   kInvalidInput,   ///< Out-of-range values (direction longer than 1, ...).
   kUnauthenticated,  ///< A session message not sealed, or sealed with the wrong key (forged).
   kReplayed,       ///< A sealed message whose sequence was seen (or is too old for the window).
+  kMissingBaseline,  ///< Packed avatars refer to a snapshot this side does not hold (avatar_delta.hpp).
   kCount
 };
 const char* drop_reason_name(DropReason reason);

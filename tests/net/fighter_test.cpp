@@ -14,6 +14,7 @@ namespace foresight {
 namespace {
 
 using test::RawClient;
+using test::snapshot_avatars;
 using namespace std::chrono_literals;
 
 struct Arena {
@@ -58,8 +59,8 @@ TEST(Fighter, SpawnsFromTheSceneAndFollowsThePlayerIntoReach) {
     const wire::Packet* p = protocol::packet_read(d, reason);
     if (p == nullptr || p->message_type() != wire::Message::Snapshot) continue;
     npcs = 0;
-    for (const wire::AvatarState* s : *p->message_as_Snapshot()->avatars())
-      if (s->flags() & protocol::kAvatarNpc) ++npcs;
+    for (const wire::AvatarState& s : snapshot_avatars(*p->message_as_Snapshot()))
+      if (s.flags() & protocol::kAvatarNpc) ++npcs;
   }
   EXPECT_EQ(npcs, a.server.num_fighters());
 }

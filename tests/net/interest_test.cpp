@@ -15,6 +15,7 @@ namespace foresight {
 namespace {
 
 using namespace std::chrono_literals;
+using test::snapshot_avatars;
 
 TEST(Interest, TheGridFindsExactlyWhoIsNear) {
   SplitMix64 rng{5};
@@ -33,12 +34,19 @@ TEST(Interest, TheGridFindsExactlyWhoIsNear) {
       if (glm::length(positions[i] - positions[own]) <= 12.0f) brute.push_back(i);
     ASSERT_EQ(found, brute) << own;
     // Not due: the near ones (own included); due: everyone, the far ones flagged.
-    server::select_interest(grid, positions, own, 12.0f, false, far_index, far);
+    server::select_interest(grid, positions, own, 12.0f, false, 0.0f, far_index, far);
     EXPECT_EQ(far_index, brute);
-    server::select_interest(grid, positions, own, 12.0f, true, far_index, far);
+    server::select_interest(grid, positions, own, 12.0f, true, 0.0f, far_index, far);
     ASSERT_EQ(far_index.size(), positions.size());
     for (uint32_t i = 0; i < positions.size(); ++i)
       EXPECT_EQ(far[i] != 0, !std::binary_search(brute.begin(), brute.end(), i)) << i;
+    // Due with a far radius of 30 m (cells of 12: the grid looks 3 cells out): only those within it.
+    std::vector<uint32_t> within;
+    for (uint32_t i = 0; i < positions.size(); ++i)
+      if (glm::length(positions[i] - positions[own]) <= 30.0f) within.push_back(i);
+    server::select_interest(grid, positions, own, 12.0f, true, 30.0f, far_index, far);
+    ASSERT_EQ(far_index, within) << own;
+    for (uint32_t i : within) EXPECT_EQ(far[i] != 0, !std::binary_search(brute.begin(), brute.end(), i)) << i;
   }
 }
 
@@ -77,14 +85,14 @@ TEST(Interest, AFarAvatarComesEveryFewSnapshotsANearOneInAll) {
       protocol::DropReason reason;
       const wire::Packet* p = protocol::packet_read(d, reason);
       const wire::Snapshot* s = p ? p->message_as_Snapshot() : nullptr;
-      if (!s || !s->avatars()) continue;
+      if (!s || s->avatar_count() == 0) continue;
       ++snapshots;
-      for (const wire::AvatarState* st : *s->avatars()) {
-        if (st->id() == b.avatar) {
+      for (const wire::AvatarState& st : snapshot_avatars(*s)) {
+        if (st.id() == b.avatar) {
           ++with_far;
-          far_flagged += (st->flags() & protocol::kAvatarFar) != 0;
+          far_flagged += (st.flags() & protocol::kAvatarFar) != 0;
         }
-        with_near += st->id() == c.avatar;
+        with_near += st.id() == c.avatar;
       }
     }
   }

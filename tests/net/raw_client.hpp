@@ -1,6 +1,7 @@
 #pragma once
 // A bare client for server tests: a real UDP socket on loopback that sends hand-built packets
 // (valid and hostile) and reads the server's replies, with the server ticked in between.
+#include "protocol/avatar_delta.hpp"
 #include "protocol/input_packet.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/quantize.hpp"
@@ -14,6 +15,14 @@
 #include <vector>
 
 namespace foresight::test {
+
+/// A snapshot part's avatars as a client that acknowledges nothing reads them (RawClient sends
+/// ack 0, so the server codes every avatar whole); a part that does not decode fails the test.
+inline std::vector<wire::AvatarState> snapshot_avatars(const wire::Snapshot& s) {
+  std::vector<wire::AvatarState> out;
+  EXPECT_EQ(protocol::snapshot_avatars(s, protocol::AvatarHistory{}, out), protocol::AvatarDecodeStatus::kOk);
+  return out;
+}
 
 class RawClient {
  public:

@@ -11,6 +11,7 @@ namespace foresight {
 namespace {
 
 using test::RawClient;
+using test::snapshot_avatars;
 using namespace std::chrono_literals;
 
 struct Running {
@@ -38,10 +39,10 @@ TEST(Server, HandshakeGivesASessionAndAnAvatarInSnapshots) {
   ASSERT_TRUE(snap.has_value());
   protocol::DropReason reason;
   const wire::Snapshot* s = protocol::packet_read(*snap, reason)->message_as_Snapshot();
-  ASSERT_NE(s->avatars(), nullptr);
-  ASSERT_EQ(s->avatars()->size(), 1u);
-  EXPECT_EQ(s->avatars()->Get(0)->id(), c.avatar);
-  EXPECT_TRUE(s->avatars()->Get(0)->flags() & protocol::kAvatarYours);
+  const std::vector<wire::AvatarState> avatars = snapshot_avatars(*s);
+  ASSERT_EQ(avatars.size(), 1u);
+  EXPECT_EQ(avatars[0].id(), c.avatar);
+  EXPECT_TRUE(avatars[0].flags() & protocol::kAvatarYours);
 }
 
 TEST(Server, InputMovesTheAvatarAndSnapshotsFollowIt) {
@@ -68,7 +69,9 @@ TEST(Server, InputMovesTheAvatarAndSnapshotsFollowIt) {
   protocol::DropReason reason;
   const wire::Snapshot* s = protocol::packet_read(*last, reason)->message_as_Snapshot();
   EXPECT_EQ(s->ack_input(), seq - 1);
-  const wire::AvatarState* a = s->avatars()->Get(0);
+  const std::vector<wire::AvatarState> avatars = snapshot_avatars(*s);
+  ASSERT_EQ(avatars.size(), 1u);
+  const wire::AvatarState* a = &avatars[0];
   const Placement seg_start{vec2(protocol::dequantize_mm(a->start_x_mm()), protocol::dequantize_mm(a->start_z_mm())),
                             protocol::dequantize_angle(a->start_heading())};
   const Placement rebuilt = motion_library_root_at(r.server.library(), a->segment(), a->frame(), seg_start);

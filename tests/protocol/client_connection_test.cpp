@@ -95,9 +95,12 @@ class FakeServer {
                      uint32_t ack_input = 0, uint32_t echo = 0) {
     std::vector<wire::AvatarState> avatars;
     for (uint32_t id : ids) avatars.emplace_back(id, 1000 * int32_t(id), -500, -1, 0, 0, 0, 0, 0);
+    std::vector<uint8_t> packed;
+    pack_avatars(avatars, packed);
     auto& fbb = writer_.begin();
-    const auto list = fbb.CreateVectorOfStructs(avatars.data(), avatars.size());
-    send(writer_.finish(wire::CreateSnapshot(fbb, tick, part, parts, ack_input, echo, 0, list)));
+    const auto bits = fbb.CreateVector(packed);
+    send(writer_.finish(wire::CreateSnapshot(fbb, tick, part, parts, ack_input, echo, 0, 0, 0, 0,
+                                             static_cast<uint16_t>(avatars.size()), bits)));
   }
 
  private:
@@ -215,7 +218,7 @@ TEST_F(ClientConnectionTest, InputsRepeatTheLastCommandsNewestLast) {
   EXPECT_EQ(input->ack_snapshot(), 77u);
 }
 
-TEST_F(ClientConnectionTest, IdleClientSendsOnlyHeartbeats) {
+TEST_F(ClientConnectionTest, IdleClientSendsOnlyAcknowledgementsAndHeartbeats) {
   connect();
   client_.set_input(ControlInput{});  // stop
   client_.flush(at(133));
@@ -226,19 +229,34 @@ TEST_F(ClientConnectionTest, IdleClientSendsOnlyHeartbeats) {
   deliver(client_, at(180));
   server_.drain();
   client_.flush(at(200));
+  // Idle, but a new snapshot held whole is acknowledged (the server codes the next ones against
+  // it): an Input without commands.
+  const auto* ack = server_.receive_a<wire::Input>();
+  ASSERT_NE(ack, nullptr);
+  EXPECT_EQ(ack->ack_snapshot(), 1u);
+  EXPECT_TRUE(ack->commands() == nullptr || ack->commands()->size() == 0);
+  server_.drain();
   client_.flush(at(900));
   EXPECT_TRUE(server_.silent()) << "idle: nothing new to say";
-  server_.send_snapshot(2, 0, 1, {3}, 2);  // keeps the server "heard from"
+  server_.send_snapshot(1, 0, 1, {3}, 2);  // a repeat: keeps the server "heard from", nothing to acknowledge
   deliver(client_, at(1000));
-  client_.flush(at(1170));
+  client_.flush(at(1210));
   const auto* hb = server_.receive_a<wire::Heartbeat>();
   ASSERT_NE(hb, nullptr) << "a heartbeat once a second while idle";
   EXPECT_EQ(hb->session(), 5u);
+  server_.drain();
+  server_.send_snapshot(2, 0, 1, {3}, 2);
+  deliver(client_, at(1300));
+  client_.flush(at(1310));
+  const auto* ack2 = server_.receive_a<wire::Input>();
+  ASSERT_NE(ack2, nullptr);
+  EXPECT_EQ(ack2->ack_snapshot(), 2u);
+  server_.drain();
 
   ControlInput left;
   left.camera_dir = vec2(-1.0f, 0.0f);
   client_.set_input(left);
-  client_.flush(at(1200));
+  client_.flush(at(1400));
   const auto* input = server_.receive_a<wire::Input>();
   ASSERT_NE(input, nullptr) << "a new input ends the idle time";
   EXPECT_EQ(input->commands()->Get(input->commands()->size() - 1)->sequence(), 3u);
@@ -252,6 +270,7 @@ TEST_F(ClientConnectionTest, SnapshotPartsMergeAndANewerTickReplaces) {
   EXPECT_EQ(client_.snapshot_tick(), 10u);
   EXPECT_EQ(client_.avatars().size(), 2u);
   EXPECT_EQ(client_.own_avatar(), nullptr);
+  EXPECT_EQ(client_.acked_snapshot(), 0u) << "only a snapshot held whole is acknowledged";
 
   server_.send_snapshot(10, 1, 2, {3});
   server_.send_snapshot(10, 1, 2, {3});  // duplicated datagram
@@ -265,10 +284,12 @@ TEST_F(ClientConnectionTest, SnapshotPartsMergeAndANewerTickReplaces) {
   EXPECT_EQ(client_.own_avatar()->id(), 3u);
   EXPECT_EQ(client_.own_avatar()->start_x_mm(), 3000);
   EXPECT_EQ(client_.own_avatar_tick(), 10u);
+  EXPECT_EQ(client_.acked_snapshot(), 10u);
 
   server_.send_snapshot(13, 1, 2, {4, 5});
   deliver(client_, at(260));
   EXPECT_EQ(client_.snapshot_tick(), 13u);
+  EXPECT_EQ(client_.acked_snapshot(), 10u) << "13 is not whole yet";
   EXPECT_EQ(client_.avatars().size(), 2u);
   EXPECT_EQ(client_.snapshot_parts_received(), 1);
   ASSERT_NE(client_.own_avatar(), nullptr) << "the last seen own state is kept";
@@ -336,9 +357,11 @@ TEST_F(ClientConnectionTest, UnsealedOrForgedServerMessagesAreDroppedOnceConnect
   connect();
   // A snapshot not sealed with the session's key: anyone on the way could have sent it.
   const wire::AvatarState avatar(7, 0, 0, -1, 0, 0, 0, 0, 0);
+  std::vector<uint8_t> packed;
+  pack_avatars({&avatar, 1}, packed);
   auto& fbb = server_.writer().begin();
   server_.send_raw(server_.writer().finish(
-      wire::CreateSnapshot(fbb, 50, 0, 1, 0, 0, 0, fbb.CreateVectorOfStructs(&avatar, 1))));
+      wire::CreateSnapshot(fbb, 50, 0, 1, 0, 0, 0, 0, 0, 0, 1, fbb.CreateVector(packed))));
   deliver(client_, at(200));
   EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kUnauthenticated)], 1u);
   EXPECT_FALSE(client_.has_snapshot());

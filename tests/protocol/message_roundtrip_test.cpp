@@ -1,5 +1,6 @@
 // Built messages survive the trip through bytes and packet_read unchanged: the control messages,
 // an Input with its redundant commands, and a multi-avatar Snapshot.
+#include "protocol/avatar_delta.hpp"
 #include "protocol/input_packet.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/quantize.hpp"
@@ -86,7 +87,7 @@ TEST(MessageRoundTrip, InputKeepsTheNewestCommandsInOrder) {
 }
 
 TEST(MessageRoundTrip, SnapshotWithManyAvatarsFitsAndRoundTrips) {
-  // 24 bytes per AvatarState: ~45 fit under the datagram budget with the header.
+  // Packed whole (the client acknowledged nothing): ~100 bits each, so 45 fit with room to spare.
   std::vector<wire::AvatarState> avatars;
   for (uint32_t i = 0; i < 45; ++i) {
     avatars.emplace_back(i + 1, quantize_mm(1.5f * static_cast<float>(i)), quantize_mm(-2.25f),
@@ -94,10 +95,12 @@ TEST(MessageRoundTrip, SnapshotWithManyAvatarsFitsAndRoundTrips) {
                          quantize_angle(0.3f * static_cast<float>(i)), static_cast<uint8_t>(i % 30),
                          i == 4 ? kAvatarYours : kAvatarNone, 0);
   }
+  std::vector<uint8_t> packed;
+  pack_avatars(avatars, packed);
   PacketWriter w;
   auto& fbb = w.begin();
-  const auto list = fbb.CreateVectorOfStructs(avatars.data(), avatars.size());
-  const auto bytes = w.finish(wire::CreateSnapshot(fbb, 1000, 1, 3, 55, 66, 77, list));
+  const auto bytes = w.finish(wire::CreateSnapshot(fbb, 1000, 1, 3, 55, 66, 77, 0, 0, 0,
+                                                   static_cast<uint16_t>(avatars.size()), fbb.CreateVector(packed)));
   EXPECT_LE(bytes.size(), kMaxDatagramBytes);
   const auto* m = read_ok<wire::Snapshot>(bytes);
   ASSERT_NE(m, nullptr);
@@ -107,9 +110,11 @@ TEST(MessageRoundTrip, SnapshotWithManyAvatarsFitsAndRoundTrips) {
   EXPECT_EQ(m->ack_input(), 55u);
   EXPECT_EQ(m->echo_client_time_ms(), 66u);
   EXPECT_EQ(m->server_time_ms(), 77u);
-  ASSERT_EQ(m->avatars()->size(), avatars.size());
+  std::vector<wire::AvatarState> decoded;
+  ASSERT_EQ(snapshot_avatars(*m, AvatarHistory{}, decoded), AvatarDecodeStatus::kOk);
+  ASSERT_EQ(decoded.size(), avatars.size());
   for (uint32_t i = 0; i < avatars.size(); ++i) {
-    const wire::AvatarState* a = m->avatars()->Get(i);
+    const wire::AvatarState* a = &decoded[i];
     EXPECT_EQ(a->id(), avatars[i].id());
     EXPECT_EQ(a->start_x_mm(), avatars[i].start_x_mm());
     EXPECT_EQ(a->start_z_mm(), avatars[i].start_z_mm());
@@ -119,7 +124,7 @@ TEST(MessageRoundTrip, SnapshotWithManyAvatarsFitsAndRoundTrips) {
     EXPECT_EQ(a->frame(), avatars[i].frame());
     EXPECT_EQ(a->flags(), avatars[i].flags());
   }
-  EXPECT_NEAR(dequantize_mm(m->avatars()->Get(3)->start_x_mm()), 4.5f, 1e-6f);
+  EXPECT_NEAR(dequantize_mm(decoded[3].start_x_mm()), 4.5f, 1e-6f);
 }
 
 }  // namespace

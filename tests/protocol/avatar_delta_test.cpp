@@ -1,0 +1,276 @@
+// Packed, delta-coded snapshot avatars (protocol/avatar_delta.hpp): what the client decodes is
+// exactly what the server coded, whatever it was coded against; bad input is an error, never a
+// wrong avatar.
+#include "protocol/avatar_delta.hpp"
+
+#include "math/splitmix64.hpp"
+#include "protocol/protocol.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <climits>
+#include <vector>
+
+namespace foresight::protocol {
+namespace {
+
+using State = wire::AvatarState;
+
+bool same(const State& a, const State& b) {
+  return a.id() == b.id() && a.start_x_mm() == b.start_x_mm() && a.start_z_mm() == b.start_z_mm() &&
+         a.transition() == b.transition() && a.segment() == b.segment() && a.start_heading() == b.start_heading() &&
+         a.frame() == b.frame() && a.flags() == b.flags() && a.reserved() == b.reserved();
+}
+
+void expect_same(const std::vector<State>& got, const std::vector<State>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) EXPECT_TRUE(same(got[i], want[i])) << "avatar " << i << " (id " << want[i].id() << ")";
+}
+
+// One part of `view` coded against `history` (as of snapshot `snapshot`, server tick `tick`).
+std::vector<uint8_t> encode(const std::vector<State>& view, uint32_t snapshot, uint32_t tick, const AvatarHistory& history,
+                            size_t begin = 0, size_t end = SIZE_MAX) {
+  AvatarDeltaEncoder encoder;
+  encoder.plan(view, snapshot, tick, history);
+  std::vector<uint8_t> bytes;
+  encoder.write_part(begin, std::min(end, view.size()), bytes);
+  return bytes;
+}
+
+void remember(AvatarHistory& h, uint32_t snapshot, uint32_t tick, const std::vector<State>& view, bool acknowledged = true) {
+  h.start(snapshot, tick).avatars = view;
+  if (acknowledged) h.acknowledge(snapshot);
+}
+
+TEST(BitStream, CodesRoundTripAtTheirLimits) {
+  std::vector<uint8_t> bytes;
+  BitWriter w(bytes);
+  w.put(5, 3);
+  w.put_gamma(1);
+  w.put_gamma(UINT64_MAX);
+  w.put_wide(0);
+  w.put_wide(UINT32_MAX);
+  w.put_signed_wide(INT32_MIN);
+  w.put_signed_wide(INT32_MAX);
+  w.put_signed_gamma(-7);
+  w.put_signed_gamma(INT32_MIN);
+  w.finish();
+  EXPECT_EQ(bytes.size(), (w.bits() + 7) / 8);
+  BitReader r(bytes);
+  EXPECT_EQ(r.get(3), 5u);
+  EXPECT_EQ(r.get_gamma(), 1u);
+  EXPECT_EQ(r.get_gamma(), UINT64_MAX);
+  EXPECT_EQ(r.get_wide(), 0u);
+  EXPECT_EQ(r.get_wide(), UINT32_MAX);
+  EXPECT_EQ(r.get_signed_wide(), INT32_MIN);
+  EXPECT_EQ(r.get_signed_wide(), INT32_MAX);
+  EXPECT_EQ(r.get_signed_gamma(), -7);
+  EXPECT_EQ(r.get_signed_gamma(), INT32_MIN);
+  EXPECT_FALSE(r.failed());
+  EXPECT_LT(r.remaining_bits(), 8u);
+  // Past the end: zeros and failed, never a read out of bounds.
+  BitReader empty({});
+  EXPECT_EQ(empty.get_gamma(), 0u);
+  EXPECT_TRUE(empty.failed());
+}
+
+TEST(AvatarDelta, WholeStatesRoundTripAtEveryFieldsLimits) {
+  const std::vector<State> view{State(0, INT32_MIN, INT32_MAX, -1, kNoSegment, 0xFFFF, 255, 0xFF, 0),
+                                State(1, 0, 0, INT32_MAX, 0, 0, 0, 0, 0xFFFF),
+                                State(17, -1, 1, 423, 73, 12345, 29, kAvatarYours | kAvatarFar, 0),
+                                State(UINT32_MAX, 5, -5, INT32_MIN, 1, 1, 1, 1, 1)};
+  const AvatarHistory empty;
+  std::vector<State> out;
+  ASSERT_EQ(decode_avatars(encode(view, 9, 9, empty), 4, 9, empty, out), AvatarDecodeStatus::kOk);
+  expect_same(out, view);
+}
+
+TEST(AvatarDelta, AnAvatarStillPlayingItsSegmentCostsAboutOneByte) {
+  // 100 walkers; the client acknowledged snapshot 10 (server tick 15); now snapshot 11, tick 17.
+  std::vector<State> before, now;
+  for (uint32_t id = 1; id <= 100; ++id) {
+    before.emplace_back(id, 1000 * int32_t(id), -2000, int32_t(id % 7), uint16_t(id % 50), uint16_t(id * 300), 3, 0, 0);
+    now.emplace_back(id, 1000 * int32_t(id), -2000, int32_t(id % 7), uint16_t(id % 50), uint16_t(id * 300), 5, 0, 0);
+  }
+  AvatarHistory server, client;
+  remember(server, 10, 15, before);
+  remember(client, 10, 0, before);  // the client does not know server ticks: they travel in the part
+  const std::vector<uint8_t> bytes = encode(now, 11, 17, server);
+  // id gap 1 bit + reference 1 + same play-through 1 + frame as predicted 1 + flags 1 + reserved 1.
+  EXPECT_LE(bytes.size(), 100u * 6 / 8 + 4) << "plain AvatarStates take " << 100 * sizeof(State);
+  std::vector<State> out;
+  ASSERT_EQ(decode_avatars(bytes, 100, 11, client, out), AvatarDecodeStatus::kOk);
+  expect_same(out, now);
+}
+
+TEST(AvatarDelta, ChangedFieldsAndNewcomersAreCodedAgainstTheRightReference) {
+  AvatarHistory history;
+  // Snapshot 20 (tick 30) held avatars 1-4; snapshot 24 (tick 36) held 1 and 5 (4 was far away);
+  // snapshot 25 was sent but not acknowledged: never a reference.
+  remember(history, 20, 30, {State(1, 0, 0, 3, 7, 100, 2, 0, 0), State(2, 500, 500, 4, 8, 200, 9, 0, 0),
+                             State(3, -500, 100, 5, 9, 300, 1, 0, 0), State(4, 9000, 9000, 6, 10, 400, 4, kAvatarFar, 0)});
+  remember(history, 24, 36, {State(1, 0, 0, 3, 7, 100, 8, 0, 0), State(5, 40, 40, -1, 11, 0, 0, 0, 0)});
+  remember(history, 25, 37, {State(6, 1, 1, 1, 1, 1, 1, 0, 0)}, /*usable=*/false);
+  const std::vector<State> now{
+      State(1, 0, 0, 3, 7, 100, 9, 0, 0),                       // as predicted from 24 (frame 8 + 1 tick)
+      State(2, 500, 500, 4, 8, 200, 9, 0, 0),                   // held still: frame residual -7
+      State(3, 120, 790, 12, 13, 65000, 0, kAvatarFallback, 0),  // a new segment, flags changed
+      State(4, 9100, 8900, 6, 10, 400, 14, 0, 0),               // new start, far flag cleared
+      State(6, 2, 2, 2, 2, 2, 2, 0, 0),                         // only in the unacknowledged 25: whole
+      State(7, -3, -3, -1, 0, 9, 0, 0, 0)};                     // new: whole
+  const std::vector<uint8_t> bytes = encode(now, 26, 37, history);
+  AvatarHistory client;  // what the client holds: 20 and 24 whole, not 25
+  remember(client, 20, 0, {State(1, 0, 0, 3, 7, 100, 2, 0, 0), State(2, 500, 500, 4, 8, 200, 9, 0, 0),
+                           State(3, -500, 100, 5, 9, 300, 1, 0, 0), State(4, 9000, 9000, 6, 10, 400, 4, kAvatarFar, 0)});
+  remember(client, 24, 0, {State(1, 0, 0, 3, 7, 100, 8, 0, 0), State(5, 40, 40, -1, 11, 0, 0, 0, 0)});
+  std::vector<State> out;
+  ASSERT_EQ(decode_avatars(bytes, static_cast<uint32_t>(now.size()), 26, client, out), AvatarDecodeStatus::kOk);
+  expect_same(out, now);
+}
+
+TEST(AvatarDelta, AcknowledgementsOutOfOrderStillReferToTheNewest) {
+  AvatarHistory history;
+  history.start(3, 3).avatars = {State(1, 0, 0, 1, 1, 1, 1, 0, 0), State(2, 0, 0, 1, 1, 1, 1, 0, 0)};
+  history.start(4, 4).avatars = {State(1, 0, 0, 1, 1, 1, 2, 0, 0)};
+  history.acknowledge(4);
+  history.acknowledge(3);  // late
+  history.acknowledge(3);  // and repeated
+  ASSERT_EQ(history.newest().size(), 2u);
+  EXPECT_EQ(history.newest()[0].snapshot, 4u) << "avatar 1: snapshot 4 is newer";
+  EXPECT_EQ(history.newest()[1].snapshot, 3u) << "avatar 2 is only in 3";
+  // 16 snapshots after 4, neither is in reach any more (references go 15 back): whole states again.
+  history.start(20, 20).avatars = {State(3, 0, 0, 1, 1, 1, 1, 0, 0)};
+  history.acknowledge(20);
+  ASSERT_EQ(history.newest().size(), 1u);
+  EXPECT_EQ(history.newest()[0].id, 3u);
+}
+
+TEST(AvatarDelta, PartsOfOneViewDecodeOnTheirOwn) {
+  AvatarHistory history;
+  std::vector<State> before, now;
+  for (uint32_t id = 3; id < 300; id += 3) {
+    before.emplace_back(id, int32_t(id) * 10, 0, 1, 2, 3, 4, 0, 0);
+    now.emplace_back(id, int32_t(id) * 10 + (id % 2 ? 700 : 0), 0, 1, 2, 3, 6, 0, 0);
+  }
+  remember(history, 40, 60, before);
+  // Decoded in reverse order, as datagrams may arrive.
+  std::vector<State> out;
+  for (size_t begin : {66u, 33u, 0u}) {
+    std::vector<State> part;
+    ASSERT_EQ(decode_avatars(encode(now, 41, 62, history, begin, begin + 33), 33, 41, history, part),
+              AvatarDecodeStatus::kOk);
+    out.insert(out.begin(), part.begin(), part.end());
+  }
+  expect_same(out, now);
+}
+
+TEST(AvatarDelta, AReferenceTheClientDoesNotHoldIsAnErrorNotAWrongAvatar) {
+  AvatarHistory server;
+  remember(server, 5, 5, {State(1, 10, 10, 1, 1, 1, 1, 0, 0)});
+  const std::vector<State> now{State(1, 10, 10, 1, 1, 1, 2, 0, 0)};
+  const std::vector<uint8_t> bytes = encode(now, 6, 6, server);
+  std::vector<State> out{State(99, 0, 0, 0, 0, 0, 0, 0, 0)};
+  EXPECT_EQ(decode_avatars(bytes, 1, 6, AvatarHistory{}, out), AvatarDecodeStatus::kMissingBaseline);
+  AvatarHistory other;  // holds snapshot 5, but without avatar 1
+  remember(other, 5, 0, {State(2, 0, 0, 0, 0, 0, 0, 0, 0)});
+  EXPECT_EQ(decode_avatars(bytes, 1, 6, other, out), AvatarDecodeStatus::kMissingBaseline);
+  AvatarHistory unusable;  // holds it, but not whole
+  remember(unusable, 5, 0, {State(1, 10, 10, 1, 1, 1, 1, 0, 0)}, false);
+  EXPECT_EQ(decode_avatars(bytes, 1, 6, unusable, out), AvatarDecodeStatus::kMissingBaseline);
+  ASSERT_EQ(out.size(), 1u) << "nothing appended on an error";
+  EXPECT_EQ(out[0].id(), 99u);
+}
+
+TEST(AvatarDelta, CutOffPaddedOrMiscountedPartsAreMalformed) {
+  std::vector<State> view;
+  for (uint32_t id = 1; id <= 20; ++id) view.emplace_back(id, int32_t(id) * 77, -int32_t(id), 3, 4, 5, 6, 0, 0);
+  const AvatarHistory empty;
+  const std::vector<uint8_t> bytes = encode(view, 1, 1, empty);
+  std::vector<State> out;
+  for (size_t n = 0; n < bytes.size(); ++n) {
+    EXPECT_EQ(decode_avatars({bytes.data(), n}, 20, 1, empty, out), AvatarDecodeStatus::kMalformed) << n << " bytes";
+    EXPECT_TRUE(out.empty());
+  }
+  std::vector<uint8_t> longer = bytes;
+  longer.push_back(0);
+  EXPECT_EQ(decode_avatars(longer, 20, 1, empty, out), AvatarDecodeStatus::kMalformed);
+  EXPECT_EQ(decode_avatars(bytes, 21, 1, empty, out), AvatarDecodeStatus::kMalformed);
+  EXPECT_EQ(decode_avatars(bytes, 19, 1, empty, out), AvatarDecodeStatus::kMalformed);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(AvatarDelta, RandomBytesNeverDecodeOutOfBounds) {
+  SplitMix64 rng(7);
+  AvatarHistory history;
+  remember(history, 99, 99, {State(1, 0, 0, 0, 0, 0, 0, 0, 0), State(2, 0, 0, 0, 0, 0, 0, 0, 0)});
+  int ok = 0;
+  std::vector<State> out;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::vector<uint8_t> bytes(rng.next() % 24);
+    for (uint8_t& b : bytes) b = static_cast<uint8_t>(rng.next());
+    out.clear();
+    const uint32_t count = static_cast<uint32_t>(rng.next() % 4);
+    const AvatarDecodeStatus status = decode_avatars(bytes, count, 100, history, out);
+    if (status == AvatarDecodeStatus::kOk) {
+      ++ok;
+      EXPECT_EQ(out.size(), count);
+      for (size_t i = 1; i < out.size(); ++i) EXPECT_LT(out[i - 1].id(), out[i].id());
+    } else {
+      EXPECT_TRUE(out.empty());
+    }
+  }
+  EXPECT_GT(ok, 0) << "some random parts are valid codes";
+}
+
+// The whole scheme over a lossy link: the server codes each snapshot against what the client
+// acknowledged, the client decodes what arrives, acknowledges what it holds whole (and some of
+// its acknowledgements are lost too); every snapshot the client decodes is exactly the server's.
+TEST(AvatarDelta, ALossyLinkNeverDesynchronises) {
+  SplitMix64 rng(2026);
+  AvatarHistory server, client;
+  std::vector<State> world;
+  for (uint32_t id = 1; id <= 60; ++id) world.emplace_back(id, 0, 0, -1, 0, 0, 0, 0, 0);
+  uint32_t next_id = 61, tick = 0;
+  int decoded = 0, referenced = 0;
+  for (uint32_t snapshot = 1; snapshot <= 2000; ++snapshot) {
+    tick += 1 + static_cast<uint32_t>(rng.next() % 2);
+    // The world moves on: frames advance, a few segments change, avatars leave and join.
+    for (State& a : world) {
+      const uint64_t r = rng.next() % 100;
+      if (r < 10) {
+        a = State(a.id(), a.start_x_mm() + int32_t(rng.next() % 2000) - 1000, a.start_z_mm() + int32_t(rng.next() % 2000) - 1000,
+                  int32_t(rng.next() % 424) - 1, uint16_t(rng.next() % 74), uint16_t(rng.next()), 0,
+                  uint8_t(rng.next() % 4 == 0 ? kAvatarFar : 0), 0);
+      } else if (r < 95) {
+        a.mutate_frame(static_cast<uint8_t>(a.frame() + (tick % 2 ? 1 : 2)));
+      }
+    }
+    if (rng.next() % 10 == 0) world.erase(world.begin() + static_cast<std::ptrdiff_t>(rng.next() % world.size()));
+    if (rng.next() % 10 == 0) world.emplace_back(next_id++, 5, 5, -1, 0, 0, 0, 0, 0);
+    // The view: a random subset (interest), in id order.
+    std::vector<State> view;
+    for (const State& a : world)
+      if (rng.next() % 5 != 0) view.push_back(a);
+    AvatarDeltaEncoder encoder;
+    encoder.plan(view, snapshot, tick, server);
+    referenced += static_cast<int>(encoder.referenced());
+    std::vector<uint8_t> bytes;
+    encoder.write_part(0, view.size(), bytes);
+    remember(server, snapshot, tick, view, false);
+    if (rng.next() % 100 < 20) continue;  // the snapshot is lost
+    std::vector<State> out;
+    ASSERT_EQ(decode_avatars(bytes, static_cast<uint32_t>(view.size()), snapshot, client, out), AvatarDecodeStatus::kOk)
+        << "snapshot " << snapshot;
+    expect_same(out, view);
+    ++decoded;
+    remember(client, snapshot, 0, out);
+    if (rng.next() % 100 < 20) continue;  // the acknowledgement is lost
+    server.acknowledge(snapshot);
+  }
+  EXPECT_GT(decoded, 1400);
+  EXPECT_GT(referenced, 50 * decoded) << "most avatars are coded against a reference";
+}
+
+}  // namespace
+}  // namespace foresight::protocol
