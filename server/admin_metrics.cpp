@@ -56,6 +56,10 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_packets_out_total", "counter", "Datagrams sent.", static_cast<double>(m.packets_out));
   line(out, "foresight_bytes_out_total", "counter", "Bytes sent (bandwidth: rate() of it).", static_cast<double>(m.bytes_out));
   line(out, "foresight_send_failures_total", "counter", "Sends the socket refused.", static_cast<double>(m.send_failures));
+  line(out, "foresight_snapshot_avatars_total", "counter", "Avatar states sent in snapshots, over all clients.",
+       static_cast<double>(m.avatars_sent));
+  line(out, "foresight_snapshot_avatars_delta_total", "counter",
+       "Of those, delta-coded against a snapshot the client acknowledged.", static_cast<double>(m.avatars_referenced));
   out += "# HELP foresight_packets_dropped_total Datagrams dropped, by reason.\n"
          "# TYPE foresight_packets_dropped_total counter\n";
   for (size_t r = 1; r < static_cast<size_t>(protocol::DropReason::kCount); ++r) {
@@ -103,6 +107,8 @@ std::string admin_metrics_json(const AdminMetrics& m) {
       {"terrain_ms", m.last.terrain_ms},
       {"packets_in", m.packets_in},
       {"bytes_out", m.bytes_out},
+      {"snapshot_avatars", m.avatars_sent},
+      {"snapshot_avatars_delta", m.avatars_referenced},
       {"dropped", drops},
       {"avatar_contacts", m.avatar_contacts},
       {"fighter_strikes", m.fighter_strikes},

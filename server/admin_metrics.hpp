@@ -36,6 +36,7 @@ struct AdminMetrics {
   uint64_t avatar_contacts = 0, fallbacks = 0;
   uint64_t fighter_strikes = 0, fighter_hits = 0;
   uint64_t terrain_steps = 0, terrain_pivots = 0, terrain_refusals = 0;
+  uint64_t avatars_sent = 0, avatars_referenced = 0;
   std::array<uint64_t, 16> drops{};  ///< By protocol::DropReason.
   std::chrono::steady_clock::time_point published{};
 };

@@ -240,6 +240,7 @@ void Server::publish_admin(Clock::time_point now) {
   m.avatar_contacts = c.avatar_contacts, m.fallbacks = c.fallbacks;
   m.fighter_strikes = c.fighter_strikes, m.fighter_hits = c.fighter_hits;
   m.terrain_steps = c.terrain_steps, m.terrain_pivots = c.terrain_pivots, m.terrain_refusals = c.terrain_refusals;
+  m.avatars_sent = c.avatars_sent, m.avatars_referenced = c.avatars_referenced;
   std::copy(c.drops.by_reason.begin(), c.drops.by_reason.end(), m.drops.begin());
   m.published = std::chrono::steady_clock::now();
 }
@@ -912,24 +913,16 @@ void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, Tic
 void Server::check_contacts() {
   // Independent of the reservations and the terrain veto: do two avatars' bodies (this frame's
   // volumes; a terrain body's pelvis circle) overlap?
-  const auto body = [this](const Player& p) {
-    if (p.terrain) return BodyVolume{terrain::terrain_avatar_ground(*p.terrain), terrain::kTerrainBodyRadius_m};
-    const PlaybackState& s = p.avatar->playback();
-    return place(library_.volumes(s.segment)[static_cast<size_t>(s.frame)], s.segment_start);
-  };
-  const size_t n = players_.size();
-  for (size_t i = 0; i < n; ++i) {
-    const BodyVolume va = body(*players_[i]);
-    for (size_t j = i + 1; j < n; ++j) {
-      const BodyVolume vb = body(*players_[j]);
-      const float r = va.radius_m + vb.radius_m;
-      const vec2 d = va.center_m - vb.center_m;
-      if (glm::dot(d, d) < r * r) {
-        ++counters_.avatar_contacts;
-        return;
-      }
+  contact_bodies_.clear();
+  for (const auto& p : players_) {
+    if (p->terrain) {
+      contact_bodies_.push_back({terrain::terrain_avatar_ground(*p->terrain), terrain::kTerrainBodyRadius_m});
+    } else {
+      const PlaybackState& s = p->avatar->playback();
+      contact_bodies_.push_back(place(library_.volumes(s.segment)[static_cast<size_t>(s.frame)], s.segment_start));
     }
   }
+  if (any_discs_overlap(contact_bodies_)) ++counters_.avatar_contacts;
 }
 
 }  // namespace foresight::server

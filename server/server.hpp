@@ -31,6 +31,7 @@
 #include "server_config.hpp"
 #include "tick_stats.hpp"
 #include "tree_summary.hpp"
+#include "world/body_volume.hpp"
 #include "world/collision_world.hpp"
 #include "world/scene.hpp"
 
@@ -236,6 +237,7 @@ class Server {
   std::vector<wire::TerrainBody> view_terrain_;
   std::vector<uint32_t> view_terrain_before_;
   std::vector<uint32_t> by_id_;                      ///< players_ indices by avatar id (snapshot order).
+  std::vector<BodyVolume> contact_bodies_;           ///< check_contacts: this frame's bodies (reused).
   protocol::AvatarDeltaEncoder avatar_encoder_;      ///< The view's avatars, packed per part.
   std::vector<std::vector<uint8_t>> part_bits_;      ///< Per part, its packed avatars (reused).
   bool terrain_mode_ = false;

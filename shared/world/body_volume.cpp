@@ -29,4 +29,19 @@ BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, float margin
   return v;
 }
 
+bool any_discs_overlap(std::span<BodyVolume> bodies) {
+  float widest = 0.0f;
+  for (const BodyVolume& b : bodies) widest = std::max(widest, b.radius_m);
+  std::sort(bodies.begin(), bodies.end(), [](const BodyVolume& a, const BodyVolume& b) { return a.center_m.x < b.center_m.x; });
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const BodyVolume& a = bodies[i];
+    for (size_t j = i + 1; j < bodies.size() && bodies[j].center_m.x - a.center_m.x < a.radius_m + widest; ++j) {
+      const float r = a.radius_m + bodies[j].radius_m;
+      const vec2 d = a.center_m - bodies[j].center_m;
+      if (glm::dot(d, d) < r * r) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace foresight

@@ -25,4 +25,8 @@ inline BodyVolume place(const BodyVolume& v, const Placement& p) {
   return {p.apply(v.center_m), v.radius_m, v.y_min_m, v.y_max_m};
 }
 
+/// Do the ground discs of any two bodies overlap (heights ignored)? Sorts `bodies` by x and
+/// sweeps, so only bodies whose x ranges overlap are compared: O(n log n) for spread bodies.
+bool any_discs_overlap(std::span<BodyVolume> bodies);
+
 }  // namespace foresight

@@ -4,6 +4,7 @@
 #include "server_options.hpp"
 
 #include "io/text_file.hpp"
+#include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -83,6 +84,18 @@ TEST(ServerOptions, TheWrittenConfigReadsBackToTheSameConfiguration) {
   EXPECT_EQ(b.max_packets_per_s, a.max_packets_per_s);
   EXPECT_EQ(b.tree_max_nodes, a.tree_max_nodes);
   EXPECT_EQ(b.motions.motions_dir, a.motions.motions_dir);
+}
+
+TEST(ServerOptions, TheShippedThousandPlayerConfigReads) {
+  const auto p = parse({"--config", (test::source_dir() / "deploy" / "field-1000.toml").string()});
+  ASSERT_TRUE(p->error.empty()) << p->error;
+  const ServerConfig& c = p->cli.config;
+  EXPECT_EQ(c.scene, "field");
+  EXPECT_GE(c.max_players, 1000);
+  EXPECT_DOUBLE_EQ(c.lookahead_budget_ms, 6.0);
+  EXPECT_FLOAT_EQ(c.interest_radius_m, 8.0f);
+  EXPECT_EQ(c.far_every, 8);
+  EXPECT_FLOAT_EQ(c.far_radius_m, 16.0f);
 }
 
 TEST(ServerOptions, HelpListsTheOptionsWithTheirDefaults) {

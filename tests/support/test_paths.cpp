@@ -9,6 +9,8 @@ std::filesystem::path mocap_dir() {
   return FORESIGHT_MOCAP_DIR;
 }
 
+std::filesystem::path source_dir() { return FORESIGHT_SOURCE_DIR; }
+
 std::filesystem::path scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::filesystem::path dir = std::filesystem::path(FORESIGHT_TEST_TMP) /

@@ -8,6 +8,8 @@ namespace foresight::test {
 std::filesystem::path mocap_dir();
 /// A fresh, empty scratch folder for this test (created under the build tree).
 std::filesystem::path scratch_dir();
+/// The repository (for files it ships, such as deploy/).
+std::filesystem::path source_dir();
 
 }  // namespace foresight::test
 
