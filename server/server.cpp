@@ -95,6 +95,14 @@ bool Server::start(const ServerConfig& config, std::string& error) {
                    config_.admin_bind.c_str(), admin_->port(), config_.admin_token.empty() ? admin_token_.c_str() : "<yours>");
     }
   }
+  if (config_.agones_sdk_port >= 0) {
+    AgonesConfig ac;
+    ac.port = config_.agones_sdk_port > 0 ? config_.agones_sdk_port : agones_port_from_environment();
+    ac.health_interval_s = config_.agones_health_s;
+    agones_ = std::make_unique<AgonesSdk>(ac, last_tick_ns_);
+    agones_->start();
+    std::fprintf(stderr, "foresight-server: Agones SDK sidecar at 127.0.0.1:%d (Ready after the first tick)\n", ac.port);
+  }
   std::fprintf(stderr,
                "foresight-server: scene %s, library %s (%d segments, hash %016llx), UDP %s:%u, "
                "%d Hz ticks, %d Hz snapshots, %d look-ahead thread(s), strategy %d, %s locomotion\n",
@@ -151,11 +159,16 @@ void Server::close_sessions() {
     remove_player(i);
   }
   join_queue_.clear();
+  if (agones_) agones_->shutdown();  // after the players were told
 }
 
 void Server::run_tick(Clock::time_point now) {
   // `now` is the protocol's clock (tests pass their own); the work is measured on the real one.
   const Clock::time_point tick_start = Clock::now();
+  last_tick_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::steady_clock::now().time_since_epoch())
+                          .count(),
+                      std::memory_order_relaxed);
   ++tick_;
   challenges_this_tick_ = 0;
   TickRecord record;

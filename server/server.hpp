@@ -18,6 +18,7 @@
 #include "lookahead/reservations.hpp"
 #include "terrain/terrain_avatar.hpp"
 #include "admin_commands.hpp"
+#include "agones_sdk.hpp"
 #include "admin_http.hpp"
 #include "fighters/fighter_assets.hpp"
 #include "fighters/fighter_npc.hpp"
@@ -122,6 +123,8 @@ class Server {
   /// The admin endpoint's TCP port, or -1 when it is not running.
   int admin_port() const { return admin_ ? admin_->port() : -1; }
   const std::string& admin_token() const { return admin_token_; }
+  /// The Agones SDK client (--agones), or nullptr.
+  const AgonesSdk* agones() const { return agones_.get(); }
   /// The fighters' shared data (database, morphologies), or nullptr without fighters.
   const FighterAssets* fighter_assets() const { return fighter_assets_.get(); }
   /// A fighter's body as last animated (what the next snapshot sends), or nullptr.
@@ -262,6 +265,8 @@ class Server {
   std::vector<AdminRequest> admin_requests_;
   std::shared_ptr<AdminState> admin_state_;
   std::unique_ptr<AdminEndpoint> admin_;  ///< Last member: its threads stop before the rest goes.
+  std::atomic<int64_t> last_tick_ns_{0};   ///< Steady clock of the latest tick (the Agones health thread reads it).
+  std::unique_ptr<AgonesSdk> agones_;      ///< After last_tick_ns_: its thread reads it until it stops.
   std::string admin_token_;
   uint32_t next_strike_event_ = 1;
   double snapshot_accumulator_ = 0;

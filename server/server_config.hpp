@@ -56,6 +56,10 @@ struct ServerConfig {
   int far_every = 4;
   /// Beyond this (when larger than interest_radius_m) an avatar is not sent at all; 0: no limit.
   float far_radius_m = 0.0f;
+  /// Agones SDK sidecar (agones_sdk.hpp): -1 off; 0 its REST port from AGONES_SDK_HTTP_PORT (else
+  /// 9358); > 0 that port.
+  int agones_sdk_port = -1;
+  double agones_health_s = 2.0;  ///< Between health pings.
   // The admin endpoint (admin_http.hpp): loopback unless told otherwise, behind a token.
   std::string admin_bind = "127.0.0.1";
   int admin_port = 7778;           ///< -1: no endpoint; 0: any free port.

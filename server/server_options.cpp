@@ -90,6 +90,12 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
                  "With --interest-radius-m: avatars farther than this are not sent at all (0: no limit)")
       ->check(CLI::Range(0.0, 10000.0))
       ->capture_default_str();
+  app.add_flag_callback(
+      "--agones", [&c] { c.agones_sdk_port = 0; },
+      "Run as an Agones GameServer: Ready, Health and Shutdown to the SDK sidecar (AGONES_SDK_HTTP_PORT)");
+  app.add_option("--agones-health-s", c.agones_health_s, "With --agones: seconds between health pings")
+      ->check(CLI::Range(0.01, 60.0))
+      ->capture_default_str();
   app.add_option("--admin-bind", c.admin_bind, "Admin endpoint address (loopback by default)")->capture_default_str();
   app.add_option("--admin-port", c.admin_port, "Admin endpoint TCP port (-1: none; 0: any free port)")
       ->check(CLI::Range(-1, 65535))

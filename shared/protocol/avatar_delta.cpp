@@ -218,8 +218,10 @@ AvatarDecodeStatus decode_avatars(std::span<const uint8_t> packed, uint32_t coun
   const size_t first = out.size();
   int64_t previous_id = -1;
   for (uint32_t k = 0; k < count && !in.failed(); ++k) {
-    const int64_t id = previous_id + static_cast<int64_t>(in.get_gamma());
-    if (id <= previous_id || id > int64_t{UINT32_MAX}) break;
+    const uint64_t gap = in.get_gamma();  // >= 1; the encoder's largest is 2^32 (from -1 to UINT32_MAX)
+    if (gap == 0 || gap > uint64_t{UINT32_MAX} + 1) break;
+    const int64_t id = previous_id + static_cast<int64_t>(gap);
+    if (id > int64_t{UINT32_MAX}) break;
     previous_id = id;
     int ref = -1;
     if (num_refs > 0 && in.get_bit()) ref = static_cast<int>(in.get(bits));
@@ -244,7 +246,7 @@ AvatarDecodeStatus decode_avatars(std::span<const uint8_t> packed, uint32_t coun
         transition = static_cast<int32_t>(in.get(transition_bits) - 1u);
         x = static_cast<int32_t>(static_cast<uint32_t>(r->start_x_mm()) + static_cast<uint32_t>(in.get_signed_wide()));
         z = static_cast<int32_t>(static_cast<uint32_t>(r->start_z_mm()) + static_cast<uint32_t>(in.get_signed_wide()));
-        heading = static_cast<uint16_t>(r->start_heading() + in.get_signed_wide());
+        heading = static_cast<uint16_t>(r->start_heading() + static_cast<uint32_t>(in.get_signed_wide()));
         frame = static_cast<uint8_t>(in.get_gamma() - 1);
       }
       flags = in.get_bit() ? r->flags() : static_cast<uint8_t>(in.get(8));

@@ -200,6 +200,46 @@ TEST(AvatarDelta, CutOffPaddedOrMiscountedPartsAreMalformed) {
   EXPECT_TRUE(out.empty());
 }
 
+TEST(AvatarDelta, AnIdGapBeyondAnyIdIsMalformed) {
+  // Found by fuzz-packet: a 64-bit gap overflowed the id arithmetic (UBSan).
+  const AvatarHistory empty;
+  for (const uint64_t gap : {UINT64_MAX, uint64_t{UINT32_MAX} + 2, uint64_t{1} << 40}) {
+    std::vector<uint8_t> bytes;
+    BitWriter w(bytes);
+    w.put(0, 5), w.put(0, 6), w.put(0, 3);  // widths, no references
+    w.put_gamma(gap);
+    w.finish();
+    std::vector<State> out;
+    EXPECT_EQ(decode_avatars(bytes, 1, 1, empty, out), AvatarDecodeStatus::kMalformed) << gap;
+  }
+  // The largest gap the encoder writes (from -1 to the largest id) is fine.
+  std::vector<State> out;
+  std::vector<uint8_t> bytes;
+  pack_avatars(std::vector<State>{State(UINT32_MAX, 0, 0, -1, 0, 0, 0, 0, 0)}, bytes);
+  ASSERT_EQ(decode_avatars(bytes, 1, 0, empty, out), AvatarDecodeStatus::kOk);
+  EXPECT_EQ(out[0].id(), UINT32_MAX);
+}
+
+TEST(AvatarDelta, HugeDifferencesWrapInsteadOfOverflowing) {
+  // Found by fuzz-packet: a heading difference near INT32_MAX overflowed an int (UBSan).
+  AvatarHistory history;
+  remember(history, 1, 1, {State(1, INT32_MAX, INT32_MIN, 0, 0, 100, 0, 0, 0)});
+  std::vector<uint8_t> bytes;
+  BitWriter w(bytes);
+  w.put(0, 5), w.put(0, 6);           // widths of segments and transitions
+  w.put(1, 3), w.put(1, 4);           // one reference: one snapshot back,
+  w.put_gamma(1);                     // 0 ticks since
+  w.put_gamma(2);                     // avatar 1
+  w.put_bit(true), w.put_bit(false);  // with the reference; a new play-through
+  w.put_signed_wide(INT32_MAX), w.put_signed_wide(INT32_MIN), w.put_signed_wide(INT32_MAX);  // x, z, heading
+  w.put_gamma(1), w.put_bit(true), w.put_bit(true);                                            // frame 0, flags, reserved
+  w.finish();
+  std::vector<State> out;
+  ASSERT_EQ(decode_avatars(bytes, 1, 2, history, out), AvatarDecodeStatus::kOk);
+  EXPECT_EQ(out[0].start_x_mm(), static_cast<int32_t>(uint32_t{INT32_MAX} + uint32_t{INT32_MAX}));
+  EXPECT_EQ(out[0].start_heading(), static_cast<uint16_t>(100u + uint32_t{INT32_MAX}));
+}
+
 TEST(AvatarDelta, RandomBytesNeverDecodeOutOfBounds) {
   SplitMix64 rng(7);
   AvatarHistory history;
