@@ -5,6 +5,7 @@
 // one JSON object as the last line of stdout. Exit status: 0 when at least one bot connected and
 // nothing stopped the run, 1 otherwise (nobody connected, the scene or recording missing, ...).
 #include "bot_fleet.hpp"
+#include "connect_flood.hpp"
 #include "library/library_source.hpp"
 #include "library/motion_source_cli.hpp"
 #include "protocol/impairment_cli.hpp"
@@ -59,6 +60,11 @@ int main(int argc, char** argv) {
   app.add_option("--churn-s", config.churn_every_s, "Soak: every this many seconds one bot leaves and joins again")
       ->check(CLI::Range(0.0, 3600.0));
   app.add_flag("!--no-reconnect", config.reconnect, "Bots whose server went away stay gone (no back-off retries)");
+  double flood_per_s = 0;
+  app.add_option("--flood-connects-per-s", flood_per_s,
+                 "Meanwhile flood the server with this many bogus connects a second (0: none)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
   // The same library options as the server: the library's content hash must match its own.
   MotionSource source;
   add_motion_source_options(app, source);
@@ -84,10 +90,24 @@ int main(int argc, char** argv) {
   raise_descriptor_limit(config.count);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  bots::ConnectFlood flood;
+  if (flood_per_s > 0) {
+    if (!flood.start(config.server, library.content_hash, flood_per_s, error)) {
+      std::fprintf(stderr, "foresight-bots: flood: %s\n", error.c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "foresight-bots: flooding %s with %.0f bogus connects a second\n", server.c_str(), flood_per_s);
+  }
   const bots::BotReport report = bots::bot_fleet_run(library, config, &std::cerr, &g_stop);
+  flood.stop();
 
   bots::bot_report_print(report, std::cout);
-  if (json) std::cout << bots::bot_report_json(report).dump() << '\n';
+  if (flood_per_s > 0) std::cout << "flood: " << flood.sent() << " bogus connects sent\n";
+  if (json) {
+    auto j = bots::bot_report_json(report);
+    if (flood_per_s > 0) j["flood_connects_sent"] = flood.sent();
+    std::cout << j.dump() << '\n';
+  }
   std::cout << std::flush;
   return report.connected > 0 && report.error.empty() ? 0 : 1;
 }
