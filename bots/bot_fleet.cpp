@@ -248,6 +248,8 @@ void BotFleet::schedule_reconnect(Bot& bot, int index, TimePoint now) {
 
 void BotFleet::on_accept(Bot& bot, int index) {
   bot.accepted = true;
+  bot.bytes_in_at_accept = bot.conn.bytes_received();
+  bot.bytes_out_at_accept = bot.conn.bytes_sent();
   bot.backoff_s = 0;  // a session again: the next loss starts the back-off afresh
   bot.brain.reset(config_.script, bot_seed(config_.seed, index), 1.0 / config_.rate_hz);
   if (world_.loaded) {
@@ -365,8 +367,8 @@ BotReport BotFleet::report(TimePoint now) const {
       const TimePoint end = c.connected() ? now : b->session_end;
       const double s = seconds_between(c.accepted_at(), end);
       if (s > 0.5) {  // shorter sessions say nothing about a rate
-        down.push_back(static_cast<double>(c.bytes_received()) * 8.0 / 1000.0 / s);
-        up.push_back(static_cast<double>(c.bytes_sent()) * 8.0 / 1000.0 / s);
+        down.push_back(static_cast<double>(c.bytes_received() - b->bytes_in_at_accept) * 8.0 / 1000.0 / s);
+        up.push_back(static_cast<double>(c.bytes_sent() - b->bytes_out_at_accept) * 8.0 / 1000.0 / s);
       }
     }
     if (!r.has_server_stats && c.server_stats_count() > 0) {

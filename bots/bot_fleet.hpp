@@ -76,6 +76,9 @@ class BotFleet {
     bool accepted = false;  ///< Ever.
     protocol::ClientState last_state = protocol::ClientState::kClosed;
     TimePoint session_end{};  ///< When it left kConnected (for its kbps).
+    /// The connection's byte counters (lifetime: a churned bot reuses it) when its latest
+    /// session began, so its kbps are that session's.
+    uint64_t bytes_in_at_accept = 0, bytes_out_at_accept = 0;
     bool reconnect_pending = false;
     TimePoint reconnect_at{};
     double backoff_s = 0;     ///< The next wait (0: the first is reconnect_first_s).

@@ -688,9 +688,11 @@ void Server::send_snapshots(Clock::time_point now) {
                                                          static_cast<uint16_t>(plan.avatars_end - plan.avatars_begin),
                                                          avatar_bits)));
     }
+    // What was sent (all of the view unless it ran past the 255 parts), for later references.
+    const size_t sent_avatars = snapshot_parts_.back().avatars_end;
     protocol::AvatarHistory::Slot& sent = p.sent_avatars.start(snapshot_tick_, static_cast<uint32_t>(tick_));
-    sent.avatars.assign(view_states_.begin(), view_states_.end());
-    counters_.avatars_sent += view_states_.size();
+    sent.avatars.assign(view_states_.begin(), view_states_.begin() + static_cast<std::ptrdiff_t>(sent_avatars));
+    counters_.avatars_sent += sent_avatars;
     counters_.avatars_referenced += avatar_encoder_.referenced();
   }
 }

@@ -322,6 +322,9 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     return;
   }
   if (has_snapshot_ && tick != snapshot_tick_ && !newer(tick, snapshot_tick_)) return;  // superseded
+  if (has_snapshot_ && tick == snapshot_tick_ && parts == snapshot_parts_ &&
+      snapshot_parts_seen_.test(static_cast<size_t>(part)))
+    return;  // a duplicated datagram
   decoded_.clear();
   if (const AvatarDecodeStatus status = snapshot_avatars(m, history_, decoded_); status != AvatarDecodeStatus::kOk) {
     drops_.add(status == AvatarDecodeStatus::kMissingBaseline ? DropReason::kMissingBaseline : DropReason::kInvalidInput);
@@ -342,7 +345,6 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     drops_.add(DropReason::kInvalidInput);
     return;
   }
-  if (snapshot_parts_seen_.test(static_cast<size_t>(part))) return;  // duplicated datagram
   snapshot_parts_seen_.set(static_cast<size_t>(part));
   ++snapshot_packets_;
 

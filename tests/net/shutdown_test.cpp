@@ -103,6 +103,11 @@ TEST(Churn, BotsLeaveAndJoinAgainAsNewSessions) {
   EXPECT_EQ(m.server.counters().sessions_timed_out, 0u);
   EXPECT_GE(fleet.connected_now(), 2) << "at most the one that just left is away";
   EXPECT_EQ(m.server.num_players(), fleet.connected_now());
+  // A bot's kbps are its latest session's bytes over that session's time (its connection's
+  // counters span all its sessions): churned bots do not look several times busier.
+  const double per_client_kbps = static_cast<double>(m.server.counters().bytes_out) * 8.0 / 1000.0 / 8.0 / 3.0;
+  EXPECT_GT(r.down_kbps_p50, 0.5 * per_client_kbps);
+  EXPECT_LT(r.down_kbps_p50, 1.5 * per_client_kbps) << "what the server sent, per client and second";
   fleet.disconnect_all();
 }
 

@@ -300,6 +300,30 @@ TEST_F(ClientConnectionTest, SnapshotPartsMergeAndANewerTickReplaces) {
   EXPECT_EQ(client_.drops().total(), 0u);
 }
 
+TEST_F(ClientConnectionTest, AvatarsCodedAgainstASnapshotItDoesNotHoldAreDroppedAndCounted) {
+  connect();
+  // The server codes snapshot 21 against snapshot 20, which never reached this client.
+  AvatarHistory server_side;
+  server_side.start(20, 30).avatars = {wire::AvatarState(1, 0, 0, -1, 2, 0, 3, 0, 0)};
+  server_side.acknowledge(20);
+  const std::vector<wire::AvatarState> now{wire::AvatarState(1, 0, 0, -1, 2, 0, 5, 0, 0)};
+  AvatarDeltaEncoder encoder;
+  encoder.plan(now, 21, 32, server_side);
+  std::vector<uint8_t> packed;
+  encoder.write_part(0, now.size(), packed);
+  auto& fbb = server_.writer().begin();
+  const auto bits = fbb.CreateVector(packed);
+  server_.send(server_.writer().finish(wire::CreateSnapshot(fbb, 21, 0, 1, 0, 0, 0, 0, 0, 0, 1, bits)));
+  deliver(client_, at(200));
+  EXPECT_EQ(client_.drops().by_reason[size_t(DropReason::kMissingBaseline)], 1u);
+  EXPECT_FALSE(client_.has_snapshot());
+  EXPECT_EQ(client_.acked_snapshot(), 0u) << "it keeps acknowledging what it holds";
+  // Whole states (what the server sends once its references age out) are taken again.
+  server_.send_snapshot(22, 0, 1, {1});
+  deliver(client_, at(250));
+  EXPECT_EQ(client_.acked_snapshot(), 22u);
+}
+
 TEST_F(ClientConnectionTest, RoundTripIsMeasuredFromTheEcho) {
   connect();
   client_.flush(at(1000));
