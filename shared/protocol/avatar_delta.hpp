@@ -4,9 +4,9 @@
 // Each avatar of a snapshot part is coded against its state in an earlier snapshot the client
 // has acknowledged (its *reference*), usually the newest one holding that avatar: an avatar still
 // playing the segment it played there, at the frame that segment has reached since, costs its id
-// gap and 4 bits; a new segment costs its changed fields as differences (about 60 bits); an
-// avatar the client has no acknowledged state of is sent whole (about 120 bits). A plain
-// AvatarState is 192 bits.
+// gap and 5 bits (plus the reference's index when a part has several); a new segment costs its
+// changed fields as differences (about 60 bits); an avatar the client has no acknowledged state
+// of is sent whole (about 100 bits). A plain AvatarState is 192 bits.
 //
 // Both sides keep the same AvatarHistory: the server the views it sent (with which ones the
 // client acknowledged), the client the snapshots it decoded whole (every part). The server only
