@@ -4,6 +4,7 @@
 #include "protocol/avatar_delta.hpp"
 
 #include "math/splitmix64.hpp"
+#include "support/alloc_counter.hpp"
 #include "protocol/protocol.hpp"
 
 #include <gtest/gtest.h>
@@ -261,6 +262,33 @@ TEST(AvatarDelta, RandomBytesNeverDecodeOutOfBounds) {
     }
   }
   EXPECT_GT(ok, 0) << "some random parts are valid codes";
+}
+
+// The server's side per client and snapshot (plan, code, remember, acknowledge): once its vectors
+// have grown to the view's size, nothing is allocated.
+TEST(AvatarDelta, AWarmSenderAllocatesNothingPerSnapshot) {
+  AvatarHistory history;
+  AvatarDeltaEncoder encoder;
+  std::vector<uint8_t> bytes;
+  bytes.reserve(2048);
+  std::vector<State> view;
+  for (uint32_t id = 1; id <= 120; ++id) view.emplace_back(id, int32_t(id) * 100, 0, 3, 4, 5, 0, 0, 0);
+  int allocations = 0;
+  for (uint32_t snapshot = 1; snapshot <= 60; ++snapshot) {
+    for (size_t i = 0; i < view.size(); ++i) {
+      const State& a = view[i];
+      view[i] = (snapshot + i) % 9 == 0 ? State(a.id(), a.start_x_mm() + 600, 0, 3, 4, 5, 0, 0, 0)
+                                        : State(a.id(), a.start_x_mm(), 0, 3, 4, 5, static_cast<uint8_t>(a.frame() + 1), 0, 0);
+    }
+    test::AllocationCount counting(snapshot > 20);  // 16 slots and the lists have grown by then
+    encoder.plan(view, snapshot, snapshot, history);
+    encoder.write_part(0, view.size(), bytes);
+    history.start(snapshot, snapshot).avatars.assign(view.begin(), view.end());
+    history.acknowledge(snapshot);
+    allocations += counting.allocations();
+  }
+  EXPECT_EQ(allocations, 0);
+  EXPECT_LT(bytes.size(), 120u * 3) << "and the view is coded against what was acknowledged";
 }
 
 // The whole scheme over a lossy link: the server codes each snapshot against what the client
