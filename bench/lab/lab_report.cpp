@@ -269,13 +269,13 @@ std::string navigation_text(const NavigationResult& n) {
            std::to_string(s.recordings) + "  p50 " + pad(fmt("%.0f", s.response_ms_p50), 5) +
            " ms  p95 " + pad(fmt("%.0f", s.response_ms_p95), 5) + " ms  " +
            (s.response_ms_p95 < n.response_target_ms ? "meets" : "MISSES") + " target\n";
-  out += "Collisions over every collision-checking controller (look-ahead 0-4, greedy): " +
+  out += "Collisions over every collision-checking controller (look-ahead 0-4, with steering, greedy): " +
          std::to_string(n.lookahead_collisions) + (n.lookahead_collisions == 0 ? " (as required)\n" : " (MUST BE 0)\n");
   if (n.naive_stuck.empty())
     out += "The naive FSM reached the goal every time.\n";
   else
     out += std::string(replay ? "Naive FSM stuck in recordings: " : "Naive FSM stuck in runs: ") + json_array(n.naive_stuck, [](const std::string& s) { return s; }) +
-           "; look-ahead (0-4) reached the goal in all of them: " +
+           "; look-ahead (0-4, with steering) reached the goal in all of them: " +
            (n.lookahead_reached_where_naive_stuck ? "yes" : "NO") + "\n";
   return out;
 }

@@ -1,5 +1,8 @@
 #include "lookahead/lookahead_avatar.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace foresight {
 
 int find_fallback_segment(const MotionLibrary& library) {
@@ -50,10 +53,52 @@ void LookaheadAvatar::set_input(const ControlInput& input) {
 
 GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(budget); }
 
+void LookaheadAvatar::steer() {
+  const vec2 command = control_world_direction(input_);
+  if (glm::dot(command, command) < 1e-8f) return;
+  const Segment& seg = library_.graph.segments[playback_.segment];
+  if (!(seg.tags & kTagLocomotion)) return;
+  const Placement now = root();
+  const float want = std::atan2(command.x, command.y);  // heading convention: forward = (sin h, cos h)
+  const float error = wrap_angle(want - now.heading_rad);
+  const float fps = library_.clips[seg.clip].fps;
+  const float step = tree_.config().steer_rad_per_s / (fps > 0.0f ? fps : 30.0f);
+  // Within 15 deg the clips' own turns do: steering there would regrow the tree every frame.
+  if (std::abs(error) < radians(15.0f)) return;
+  const float turn = std::clamp(error, -step, step);
+  // Rotate the segment's placement about where the root stands now.
+  const Placement rotated{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
+                          playback_.segment_start.heading_rad + turn};
+  if (!segment_feasible(world_, library_.segment_shapes[playback_.segment], rotated)) return;
+  playback_.segment_start = rotated;
+  tree_.reset(playback_.segment, rotated, playback_.incoming_transition);
+  tree_.set_command(command, root(), input_.crouch);
+}
+
+bool LookaheadAvatar::leave_standing_loop() const {
+  if (playback_.frame <= 0 || glm::dot(control_world_direction(input_), control_world_direction(input_)) < 1e-8f)
+    return false;
+  const Segment& seg = library_.graph.segments[playback_.segment];
+  const SegmentMotion& m = library_.segment_motion[playback_.segment];
+  // A held pose that goes nowhere: every frame is the same, so its end can come at any frame.
+  return (seg.tags & kTagIdle) && !(seg.tags & kTagTurn) && glm::length(m.end.pos_m) < 0.01f &&
+         std::abs(m.end.heading_rad) < 0.02f;
+}
+
 AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   AvatarStepResult result;
   ++playback_.frame;
-  if (!playback_at_end(library_, playback_)) return result;
+  const bool steering = tree_.config().steer_rad_per_s > 0.0f;
+  if (!playback_at_end(library_, playback_)) {
+    if (!steering) return result;
+    if (!leave_standing_loop()) {
+      steer();
+      return result;
+    }
+    const int child = tree_.select_child(veto);
+    if (child < 0 || (library_.graph.segments[tree_.node(child).segment].tags & kTagIdle)) return result;
+    playback_.frame = library_.graph.segments[playback_.segment].num_frames();  // its end, now
+  }
 
   result.segment_changed = true;
   const int child = tree_.select_child(veto);

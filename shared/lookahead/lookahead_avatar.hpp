@@ -44,6 +44,9 @@ class LookaheadAvatar {
   int fallback_segment() const { return fallback_segment_; }
 
  private:
+  void steer();
+  bool leave_standing_loop() const;
+
   const MotionLibrary& library_;
   const CollisionWorld& world_;
   MotionTree tree_;

@@ -42,6 +42,12 @@ struct MotionTreeConfig {
   /// Segments with any of these tags are never added: a player steering with arrow keys does not
   /// mean to throw punches (SegmentTag bits, graph/motion_graph.hpp).
   uint32_t excluded_tags = kTagFight;
+  /// Root steering (0: off, the paper's controller): while a locomotion segment plays, its
+  /// remaining frames are rotated about the avatar's root towards the command by at most this
+  /// much per second (if the rotated segment is collision-free; the tree then regrows from it),
+  /// and a standing loop is left at any frame for a moving child. Games do the same; the feet
+  /// slide by the rotation.
+  float steer_rad_per_s = 0.0f;
 };
 
 /// The paper's controller and the two baselines of the navigation comparison, as tree settings.

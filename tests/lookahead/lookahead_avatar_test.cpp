@@ -103,6 +103,56 @@ TEST(LookaheadAvatar, SteeringIntoAWallNeverEntersIt) {
   }
 }
 
+// Root steering (MotionTreeConfig::steer_rad_per_s): after a right-angle change of command while
+// walking, the steered avatar moves within 30 deg of the new direction sooner than the paper's
+// controller, which must wait for the playing step to end.
+TEST(LookaheadAvatar, RootSteeringFollowsARightAngleTurnSooner) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  const auto frames_to_follow = [&](float steer_deg_per_s, int walk_frames) {
+    MotionTreeConfig config;
+    config.steer_rad_per_s = radians(steer_deg_per_s);
+    LookaheadAvatar avatar(lib, arena.world, config, test::idle_segment(lib), Placement{vec2(0, -6), 0.0f});
+    ControlInput ahead;
+    ahead.camera_dir = vec2(0, 1);  // +Z
+    run(avatar, lib, arena.world, ahead, walk_frames, 300);
+    ControlInput left = ahead;
+    left.camera_dir = vec2(-1, 0);  // the camera's left: +X (camera yaw 0)
+    vec2 before = avatar.root().pos_m;
+    for (int f = 1; f <= 60; ++f) {
+      EXPECT_EQ(run(avatar, lib, arena.world, left, 1, 300).colliding_frames, 0);
+      const vec2 now = avatar.root().pos_m, v = now - before;
+      before = now;
+      if (glm::length(v) > 0.2f / 30.0f && v.x > 0.0f && std::abs(std::atan2(v.y, v.x)) < radians(30.0f)) return f;
+    }
+    return 61;
+  };
+  int paper = 0, steered = 0;
+  for (int walk = 60; walk < 75; walk += 3) {  // the change comes at different points of a step
+    paper += frames_to_follow(0.0f, walk);
+    steered += frames_to_follow(540.0f, walk);
+  }
+  std::printf("frames to follow a right angle, 5 changes: paper %d, steered %d\n", paper, steered);
+  EXPECT_LT(steered, paper * 3 / 4) << "steered " << steered << " frames in all, the paper's controller " << paper;
+}
+
+TEST(LookaheadAvatar, RootSteeringNeverEntersAWall) {
+  const auto& lib = default_library();
+  const auto& maze = loaded_scene("maze");
+  const SpawnPoint& spawn = maze.scene.spawns.front();
+  MotionTreeConfig config;
+  config.steer_rad_per_s = radians(540.0f);
+  LookaheadAvatar avatar(lib, maze.world, config, test::idle_segment(lib), {spawn.pos_m, spawn.heading_rad});
+  // Commands that keep swinging round, towards walls and along them.
+  int colliding = 0;
+  for (int k = 0; k < 24; ++k) {
+    ControlInput in;
+    in.camera_dir = vec2(std::sin(1.7f * static_cast<float>(k)), std::cos(1.7f * static_cast<float>(k)));
+    colliding += run(avatar, lib, maze.world, in, 20, 200).colliding_frames;
+  }
+  EXPECT_EQ(colliding, 0);
+}
+
 TEST(LookaheadAvatar, WithNoBudgetItFallsBackToIdleAndNeverMoves) {
   const auto& lib = default_library();
   const auto& maze = loaded_scene("maze");
