@@ -28,16 +28,11 @@ LinkQuality classify_link(bool connected, double rtt_ms, double loss, const Qual
   return LinkQuality::kPoor;
 }
 
-double expected_snapshots(uint32_t tick_span, int tick_hz, int snapshot_hz) {
-  if (tick_hz <= 0 || snapshot_hz <= 0) return 0;
-  return static_cast<double>(tick_span) * std::min(snapshot_hz, tick_hz) / tick_hz;
-}
-
-void LinkMeter::add(const LinkSample& sample, int tick_hz, int snapshot_hz) {
+void LinkMeter::add(const LinkSample& sample) {
   if (count_ > 0) {
     const LinkSample& last = at(count_ - 1);
-    const bool went_back = static_cast<int32_t>(sample.newest_tick - last.newest_tick) < 0 ||
-                           sample.ticks_received < last.ticks_received || sample.bytes_down < last.bytes_down ||
+    const bool went_back = static_cast<int32_t>(sample.newest_snapshot - last.newest_snapshot) < 0 ||
+                           sample.snapshots_received < last.snapshots_received || sample.bytes_down < last.bytes_down ||
                            sample.bytes_up < last.bytes_up || sample.t_s <= last.t_s;
     if (went_back) count_ = 0;  // a new connection: its counters start again
   }
@@ -57,8 +52,10 @@ void LinkMeter::add(const LinkSample& sample, int tick_hz, int snapshot_hz) {
   down_kbit_s_ = static_cast<double>(newest.bytes_down - previous.bytes_down) * 8.0 / 1000.0 / dt;
   up_kbit_s_ = static_cast<double>(newest.bytes_up - previous.bytes_up) * 8.0 / 1000.0 / dt;
   const LinkSample& oldest = at(0);
-  const double expected = expected_snapshots(newest.newest_tick - oldest.newest_tick, tick_hz, snapshot_hz);
-  const auto received = static_cast<double>(newest.ticks_received - oldest.ticks_received);
+  // Snapshots are numbered one by one (not by server tick: 20 Hz snapshots on 30 Hz ticks are
+  // still consecutive numbers).
+  const auto expected = static_cast<double>(newest.newest_snapshot - oldest.newest_snapshot);
+  const auto received = static_cast<double>(newest.snapshots_received - oldest.snapshots_received);
   loss_ = expected >= 1.0 ? std::clamp(1.0 - received / expected, 0.0, 1.0) : 0.0;
 }
 
@@ -163,8 +160,7 @@ void DebugOverlay::frame(protocol::ClientConnection& connection, double t_s, boo
     meter_.reset();
   } else if (t_s >= next_sample_s_) {
     meter_.add({t_s, connection.snapshot_tick(), connection.snapshot_ticks(), connection.bytes_received(),
-                connection.bytes_sent()},
-               accept.tick_hz, accept.snapshot_hz);
+                connection.bytes_sent()});
     next_sample_s_ = t_s + kSampleIntervalS;
   }
   if (connected && visible_ && t_s >= next_stats_request_s_) {

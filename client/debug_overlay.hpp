@@ -36,30 +36,27 @@ struct QualityThresholds {
 /// (rtt_ms <= 0): red.
 LinkQuality classify_link(bool connected, double rtt_ms, double loss, const QualityThresholds& limits = {});
 
-/// Snapshots the server should have sent while its tick advanced by `tick_span`: it sends
-/// `snapshot_hz` of its `tick_hz` ticks a second (an accumulator, so spacing may vary by one tick).
-double expected_snapshots(uint32_t tick_span, int tick_hz, int snapshot_hz);
-
 /// The connection's counters at one moment (ClientConnection: snapshot_tick(), snapshot_ticks(),
 /// bytes_received(), bytes_sent()).
 struct LinkSample {
   double t_s = 0;
-  uint32_t newest_tick = 0;     ///< Newest snapshot tick seen.
-  uint64_t ticks_received = 0;  ///< New snapshot ticks seen so far.
+  uint32_t newest_snapshot = 0;     ///< Newest snapshot number seen (Snapshot::tick: one per snapshot).
+  uint64_t snapshots_received = 0;  ///< New snapshots seen so far.
   uint64_t bytes_down = 0, bytes_up = 0;
 };
 
 /// Loss and bandwidth from samples taken about once a second: loss over the last kWindow samples
-/// (snapshot ticks received against those the tick span says were sent; late or reordered ones
-/// count as lost, as the client drops them), bandwidth over the last interval. A counter that goes
-/// back (reconnect) restarts the meter. Fixed size, never allocates.
+/// (snapshots received against those the numbers say were sent: the server numbers every
+/// snapshot; late or reordered ones count as lost, as the client drops them), bandwidth over the
+/// last interval. A counter that goes back (reconnect) restarts the meter. Fixed size, never
+/// allocates.
 class LinkMeter {
  public:
   static constexpr int kWindow = 6;  ///< Samples: 5 intervals.
 
   void reset() { count_ = 0; }
-  void add(const LinkSample& sample, int tick_hz, int snapshot_hz);
-  /// Share of snapshot ticks missing, 0..1 (0 until two samples span at least one expected snapshot).
+  void add(const LinkSample& sample);
+  /// Share of snapshots missing, 0..1 (0 until two samples span at least one snapshot).
   double loss() const { return loss_; }
   double down_kbit_s() const { return down_kbit_s_; }
   double up_kbit_s() const { return up_kbit_s_; }
