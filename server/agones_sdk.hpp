@@ -39,8 +39,6 @@ class AgonesSdk {
   void shutdown();
 
   bool ready() const { return ready_.load(); }
-  uint64_t health_pings() const { return health_pings_.load(); }
-  uint64_t failures() const { return failures_.load(); }  ///< Calls the sidecar did not answer with 2xx.
 
  private:
   void loop();
@@ -55,7 +53,6 @@ class AgonesSdk {
   bool stop_ = false;
   bool shut_down_ = false;
   std::atomic<bool> ready_{false};
-  std::atomic<uint64_t> health_pings_{0}, failures_{0};
 };
 
 }  // namespace foresight::server

@@ -164,6 +164,17 @@ def box(kind, name, lo, hi):
     return {"kind": kind, "name": name, "min": r3(lo), "max": r3(hi)}
 
 
+def low_walls(inner, height, t=0.3):
+    """Four walls of thickness t just outside the square [-inner, inner]^2 (arena, field)."""
+    o = inner + t
+    return [
+        box("wall", "low-wall-west", [-o, 0, -o], [-inner, height, o]),
+        box("wall", "low-wall-east", [inner, 0, -o], [o, height, o]),
+        box("wall", "low-wall-south", [-inner, 0, -o], [inner, height, -inner]),
+        box("wall", "low-wall-north", [-inner, 0, inner], [inner, height, o]),
+    ]
+
+
 def camera(name, corner, centre, region_min, region_max, height=9.0, fov=60.0):
     return {"name": name, "position": r3([corner[0], height, corner[1]]),
             "target": r3([centre[0], 0.0, centre[1]]), "fov_y_deg": fov,
@@ -367,11 +378,7 @@ def terrain_scene():
 def arena_scene():
     lo, hi = [-8.3, -8.3], [8.3, 8.3]
     t, wall_h = 0.3, 1.0
-    boxes = [
-        box("wall", "low-wall-west", [-8.3, 0, -8.3], [-8.0, wall_h, 8.3]),
-        box("wall", "low-wall-east", [8.0, 0, -8.3], [8.3, wall_h, 8.3]),
-        box("wall", "low-wall-south", [-8.0, 0, -8.3], [8.0, wall_h, -8.0]),
-        box("wall", "low-wall-north", [-8.0, 0, 8.0], [8.0, wall_h, 8.3]),
+    boxes = low_walls(8.0, wall_h, t) + [
         box("obstacle", "pillar-sw", [-4.3, 0, -4.3], [-3.7, 3.0, -3.7]),
         box("obstacle", "pillar-ne", [3.7, 0, 3.7], [4.3, 3.0, 4.3]),
     ]
@@ -401,12 +408,7 @@ def field_scene():
     """A 64 x 64 m open field for load tests (1000 avatars stand in it), a few pillars."""
     lo, hi = [-32.3, -32.3], [32.3, 32.3]
     h = 1.0
-    boxes = [
-        box("wall", "low-wall-west", [-32.3, 0, -32.3], [-32.0, h, 32.3]),
-        box("wall", "low-wall-east", [32.0, 0, -32.3], [32.3, h, 32.3]),
-        box("wall", "low-wall-south", [-32.0, 0, -32.3], [32.0, h, -32.0]),
-        box("wall", "low-wall-north", [-32.0, 0, 32.0], [32.0, h, 32.3]),
-    ]
+    boxes = low_walls(32.0, h)
     for i, (x, z) in enumerate([(-16, -16), (16, -16), (-16, 16), (16, 16), (0, 18), (0, -18)]):
         boxes.append(box("obstacle", f"pillar-{i + 1}", [x - 0.5, 0, z - 0.5], [x + 0.5, 3.0, z + 0.5]))
     spawns = [{"name": f"spawn-{r}-{c}", "pos": [-24.0 + 12.0 * c, -24.0 + 12.0 * r], "heading_deg": 0.0}

@@ -76,8 +76,8 @@ void LookaheadAvatar::steer() {
 }
 
 bool LookaheadAvatar::leave_standing_loop() const {
-  if (playback_.frame <= 0 || glm::dot(control_world_direction(input_), control_world_direction(input_)) < 1e-8f)
-    return false;
+  const vec2 command = control_world_direction(input_);
+  if (playback_.frame <= 0 || glm::dot(command, command) < 1e-8f) return false;
   const Segment& seg = library_.graph.segments[playback_.segment];
   const SegmentMotion& m = library_.segment_motion[playback_.segment];
   // A held pose that goes nowhere: every frame is the same, so its end can come at any frame.
@@ -88,20 +88,21 @@ bool LookaheadAvatar::leave_standing_loop() const {
 AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   AvatarStepResult result;
   ++playback_.frame;
-  const bool steering = tree_.config().steer_rad_per_s > 0.0f;
+  int child = -1;
   if (!playback_at_end(library_, playback_)) {
-    if (!steering) return result;
+    if (tree_.config().steer_rad_per_s <= 0.0f) return result;
     if (!leave_standing_loop()) {
       steer();
       return result;
     }
-    const int child = tree_.select_child(veto);
+    child = tree_.select_child(veto);
     if (child < 0 || (library_.graph.segments[tree_.node(child).segment].tags & kTagIdle)) return result;
     playback_.frame = library_.graph.segments[playback_.segment].num_frames();  // its end, now
+  } else {
+    child = tree_.select_child(veto);
   }
 
   result.segment_changed = true;
-  const int child = tree_.select_child(veto);
   // The naive baseline kept children unchecked: it finds out only now, and stops.
   const bool child_free =
       child >= 0 && (tree_.config().check_collisions ||

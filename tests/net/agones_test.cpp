@@ -89,7 +89,7 @@ TEST(Agones, ReadyOnceTickingHealthWhileTickingShutdownAtTheEnd) {
   EXPECT_EQ(sidecar.shutdown.load(), 1) << "once";
 }
 
-TEST(Agones, WithoutTheOptionNothingIsCalled) {
+TEST(Agones, WithoutTheOptionThereIsNoSdkClient) {
   server::Server server;
   std::string error;
   ASSERT_TRUE(server.start(test::test_server_config("arena"), error)) << error;
