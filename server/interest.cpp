@@ -43,7 +43,7 @@ void InterestGrid::near(vec2 at, float radius_m, std::vector<uint32_t>& out) con
 void select_interest(const InterestGrid& grid, std::span<const vec2> positions, uint32_t own, float radius_m,
                      bool far_due, float far_radius_m, std::vector<uint32_t>& out, std::vector<uint8_t>& far) {
   out.clear();
-  far.assign(positions.size(), 0);
+  far.clear();
   if (far_due) {
     if (far_radius_m > radius_m) {
       grid.near(positions[own], far_radius_m, out);
@@ -55,12 +55,13 @@ void select_interest(const InterestGrid& grid, std::span<const vec2> positions, 
     const float r2 = radius_m * radius_m;
     for (uint32_t i : out) {
       const vec2 d = positions[i] - positions[own];
-      far[i] = i != own && glm::dot(d, d) > r2;
+      far.push_back(i != own && glm::dot(d, d) > r2);
     }
     return;
   }
   grid.near(positions[own], radius_m, out);  // includes own
   std::sort(out.begin(), out.end());
+  far.assign(out.size(), 0);
 }
 
 }  // namespace foresight::server

@@ -34,8 +34,9 @@ class InterestGrid {
 
 /// The avatars one client gets in this snapshot, as indices into `positions` in ascending order
 /// (the snapshot's avatar order): `own` always; within `radius_m` always; when `far_due` the rest
-/// within `far_radius_m` (everyone if it is not larger than radius_m). `far` is set for those
-/// beyond radius_m (the client then knows they come less often).
+/// within `far_radius_m` (everyone if it is not larger than radius_m). `far[k]` (one per entry of
+/// `out`, so the work is the view's, not the world's) is set for out[k] beyond radius_m (the client
+/// then knows they come less often).
 void select_interest(const InterestGrid& grid, std::span<const vec2> positions, uint32_t own, float radius_m,
                      bool far_due, float far_radius_m, std::vector<uint32_t>& out, std::vector<uint8_t>& far);
 

@@ -714,11 +714,12 @@ void Server::build_view(size_t receiver, bool interest) {
   view_states_.clear();
   view_terrain_.clear();
   view_terrain_before_.clear();
-  for (uint32_t i : view_index_) {
+  for (size_t k = 0; k < view_index_.size(); ++k) {
+    const uint32_t i = view_index_[k];
     view_terrain_before_.push_back(static_cast<uint32_t>(view_terrain_.size()));
     wire::AvatarState a = snapshot_states_[i];
     a.mutate_flags(static_cast<uint8_t>(a.flags() | (i == receiver ? protocol::kAvatarYours : 0) |
-                                        (view_far_[i] ? protocol::kAvatarFar : 0)));
+                                        (view_far_[k] ? protocol::kAvatarFar : 0)));
     view_states_.push_back(a);
     for (uint32_t t = terrain_before_[i]; t < terrain_before_[i + 1]; ++t) view_terrain_.push_back(snapshot_terrain_[t]);
   }

@@ -36,17 +36,21 @@ TEST(Interest, TheGridFindsExactlyWhoIsNear) {
     // Not due: the near ones (own included); due: everyone, the far ones flagged.
     server::select_interest(grid, positions, own, 12.0f, false, 0.0f, far_index, far);
     EXPECT_EQ(far_index, brute);
+    EXPECT_EQ(far, std::vector<uint8_t>(brute.size(), 0)) << "near ones are never far";
     server::select_interest(grid, positions, own, 12.0f, true, 0.0f, far_index, far);
     ASSERT_EQ(far_index.size(), positions.size());
-    for (uint32_t i = 0; i < positions.size(); ++i)
-      EXPECT_EQ(far[i] != 0, !std::binary_search(brute.begin(), brute.end(), i)) << i;
+    ASSERT_EQ(far.size(), far_index.size());
+    for (uint32_t k = 0; k < far_index.size(); ++k)
+      EXPECT_EQ(far[k] != 0, !std::binary_search(brute.begin(), brute.end(), far_index[k])) << far_index[k];
     // Due with a far radius of 30 m (cells of 12: the grid looks 3 cells out): only those within it.
     std::vector<uint32_t> within;
     for (uint32_t i = 0; i < positions.size(); ++i)
       if (glm::length(positions[i] - positions[own]) <= 30.0f) within.push_back(i);
     server::select_interest(grid, positions, own, 12.0f, true, 30.0f, far_index, far);
     ASSERT_EQ(far_index, within) << own;
-    for (uint32_t i : within) EXPECT_EQ(far[i] != 0, !std::binary_search(brute.begin(), brute.end(), i)) << i;
+    ASSERT_EQ(far.size(), far_index.size());
+    for (uint32_t k = 0; k < far_index.size(); ++k)
+      EXPECT_EQ(far[k] != 0, !std::binary_search(brute.begin(), brute.end(), far_index[k])) << far_index[k];
   }
 }
 
