@@ -22,11 +22,13 @@ std::string fig10_svg(const Fig10Result& fig10, const Scene& scene);
 std::string navigation_text(const NavigationResult& navigation);
 /// Rows of every result given (replay and closed loop), with a "mode" column.
 CsvTable navigation_csv(const std::vector<const NavigationResult*>& results);
+/// One row per followed command change of every run: when, how long, which segments.
+CsvTable responses_csv(const std::vector<const NavigationResult*>& results);
 
 /// Every figure as one JSON object on one line (no trailing newline).
 std::string lab_json(const LabResult& result);
 
-/// Writes fig9.csv, fig9.svg, fig10.csv, fig10.svg and navigation.csv into `dir` (created).
+/// Writes fig9.csv, fig9.svg, fig10.csv, fig10.svg, navigation.csv and responses.csv into `dir` (created).
 /// False with a reason on an I/O error.
 bool lab_write_files(const LabResult& result, const Scene& scene, const std::filesystem::path& dir,
                      std::string& error);

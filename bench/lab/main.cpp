@@ -1,6 +1,6 @@
 // foresight-lab: the paper's Fig. 9 and Fig. 10 and the navigation comparison, replayed from the
 // shipped recordings (docs/LAB.md).
-//   foresight-lab --scene maze --out DIR [--json] [--quick]
+//   foresight-lab --scene maze --out DIR [--json] [--quick] [--seeds 20] [--responsive-seeds 200]
 #include "lab/lab_experiments.hpp"
 #include "lab/lab_report.hpp"
 #include "machine_info.hpp"
@@ -16,10 +16,17 @@ int main(int argc, char** argv) {
   std::string out_dir;
   bool json = false;
   app.add_option("--scene", options.scene, "Scene with shipped recordings: maze or obstacles");
-  app.add_option("--out", out_dir, "Folder for fig9.csv/.svg, fig10.csv/.svg, navigation.csv")
+  app.add_option("--out", out_dir, "Folder for fig9.csv/.svg, fig10.csv/.svg, navigation.csv, responses.csv")
       ->required();
   app.add_flag("--json", json, "Print one JSON object with every figure as the last line");
-  app.add_flag("--quick", options.quick, "Three frame intervals only (tests, CI)");
+  app.add_flag("--quick", options.quick, "Three frame intervals and one closed-loop seed (tests, CI)");
+  app.add_option("--seeds", options.closed_loop_seeds, "Closed-loop player seeds 1..N per controller")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  app.add_option("--responsive-seeds", options.responsive_seeds,
+                 "Closed-loop seeds for look-ahead 1 + steering (at least --seeds)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   app.add_option("--paper-rate", options.paper_expansions_per_s,
                  "Assumed expansions/s of the paper's machine")
       ->check(CLI::Range(1.0, 1e9));
@@ -57,7 +64,7 @@ int main(int argc, char** argv) {
   std::printf("%s\n%s\n%s\n%s\n", fig9_text(result.fig9).c_str(),
               fig10_text(result.fig10).c_str(), navigation_text(result.navigation).c_str(),
               navigation_text(result.closed_loop).c_str());
-  std::printf("wrote %s/{fig9.csv,fig9.svg,fig10.csv,fig10.svg,navigation.csv}\n", out_dir.c_str());
+  std::printf("wrote %s/{fig9.csv,fig9.svg,fig10.csv,fig10.svg,navigation.csv,responses.csv}\n", out_dir.c_str());
   std::printf("runtime %.1f s:", result.wall_s);
   for (const auto& [name, seconds] : result.phase_s) std::printf(" %s %.1f s", name.c_str(), seconds);
   std::printf("\n");

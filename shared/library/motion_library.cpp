@@ -135,21 +135,20 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   // Per segment: relative movement and body volumes in the segment's own frame.
   lib.segment_motion.clear();
   lib.segment_shapes.clear();
-  std::vector<BodyVolume> volumes;
+  std::vector<std::vector<BodyVolume>> volumes(lib.graph.segments.size());
   std::vector<vec3> global(static_cast<size_t>(n));
   std::vector<quat> global_rot(static_cast<size_t>(n));
-  for (const Segment& s : lib.graph.segments) {
+  for (size_t si = 0; si < lib.graph.segments.size(); ++si) {
+    const Segment& s = lib.graph.segments[si];
     const Clip& clip = lib.clips[s.clip];
     const Placement start = lib.root_placement(s.clip, s.first_frame);
     const Placement to_local = start.inverse();
     lib.segment_motion.push_back({start, to_local.compose(lib.root_placement(s.clip, s.end_frame))});
-    volumes.clear();
     for (int f = s.first_frame; f <= s.end_frame; ++f) {
       fk_pose(lib.skeleton, clip.frame_pos(f), clip.frame_rot(f), global, global_rot);
       for (vec3& p : global) p = to_local.apply(p);
-      volumes.push_back(body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
+      volumes[si].push_back(body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
     }
-    lib.segment_shapes.push_back(make_segment_shape(volumes));
   }
 
   // Per transition: the blend offset from the successor's first pose to the predecessor's end.
@@ -165,6 +164,23 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
     std::copy(offset.pos_m.begin(), offset.pos_m.end(), lib.transition_offset_pos_m.begin() + t * n);
     std::copy(offset.rot.begin(), offset.rot.end(), lib.transition_offset_rot.begin() + t * n);
   }
+
+  // The poses shown while a transition blends out differ from the clip's by up to the join's gap
+  // (about 1.5 cm): each blended frame's volume is grown to hold every incoming blend's pose too,
+  // so what the tree checks covers what is shown (shown_pose_collides), not only the clip.
+  Pose pose;
+  for (size_t t = 0; t < lib.graph.transitions.size(); ++t) {
+    const Transition& tr = lib.graph.transitions[t];
+    std::vector<BodyVolume>& frames = volumes[static_cast<size_t>(tr.to)];
+    const int blended = std::min(tr.blend_frames, static_cast<int>(frames.size()));
+    for (int k = 0; k < blended; ++k) {
+      motion_library_sample(lib, tr.to, k, Placement{}, static_cast<int>(t), pose);
+      fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, global, global_rot);
+      frames[static_cast<size_t>(k)] = enclosing_volume(
+          frames[static_cast<size_t>(k)], body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
+    }
+  }
+  for (const std::vector<BodyVolume>& frames : volumes) lib.segment_shapes.push_back(make_segment_shape(frames));
 
   lib.content_hash = content_hash_of(lib);
   return true;

@@ -4,6 +4,29 @@
 #include <cmath>
 
 namespace foresight {
+namespace {
+
+/// On top of the caller's veto, rules out the children a steered avatar should not take while a
+/// direction is held: traps (segments listed), and, when `ends_standing` is given, every child
+/// that ends standing. A root's children all start where the root ends, so the segment names one.
+class SteeredChoice final : public ChildVeto {
+ public:
+  SteeredChoice(const std::vector<int>& traps, const std::vector<uint8_t>* ends_standing, const ChildVeto* outer)
+      : traps_(traps), ends_standing_(ends_standing), outer_(outer) {}
+  virtual ~SteeredChoice() = default;
+  bool blocks(int segment, const Placement& start) const override {
+    return (ends_standing_ != nullptr && (*ends_standing_)[static_cast<size_t>(segment)] != 0) ||
+           std::find(traps_.begin(), traps_.end(), segment) != traps_.end() ||
+           (outer_ != nullptr && outer_->blocks(segment, start));
+  }
+
+ private:
+  const std::vector<int>& traps_;
+  const std::vector<uint8_t>* ends_standing_;
+  const ChildVeto* outer_;
+};
+
+}  // namespace
 
 int find_fallback_segment(const MotionLibrary& library) {
   int best = -1;
@@ -39,6 +62,14 @@ LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWo
       playback_{start_segment, 0, start, -1},
       fallback_segment_(find_fallback_segment(library)) {
   tree_.reset(start_segment, start);
+  // A segment ends standing when a standing loop may follow it (stops, side steps, turns on the
+  // spot, the loops themselves).
+  ends_standing_.resize(static_cast<size_t>(library.graph.num_segments()));
+  traps_.reserve(library.graph.transitions.size());
+  visit_.reserve(static_cast<size_t>(tree_.config().max_nodes));
+  for (int s = 0; s < library.graph.num_segments(); ++s)
+    for (const Transition& t : library.graph.successors(s))
+      if (is_standing_loop(t.to)) ends_standing_[static_cast<size_t>(s)] = 1;
 }
 
 void LookaheadAvatar::set_input(const ControlInput& input) {
@@ -69,20 +100,93 @@ void LookaheadAvatar::steer() {
   // Rotate the segment's placement about where the root stands now.
   const Placement rotated{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
                           playback_.segment_start.heading_rad + turn};
-  if (!segment_feasible(world_, library_.segment_shapes[playback_.segment], rotated)) return;
+  if (!segment_feasible(world_, library_.segment_shapes[playback_.segment], rotated) ||
+      !has_way_on(playback_.segment, rotated, kWayOnDepth))
+    return;
   playback_.segment_start = rotated;
   tree_.reset(playback_.segment, rotated, playback_.incoming_transition);
   tree_.set_command(command, root(), input_.crouch);
 }
 
-bool LookaheadAvatar::leave_standing_loop() const {
-  const vec2 command = control_world_direction(input_);
-  if (playback_.frame <= 0 || glm::dot(command, command) < 1e-8f) return false;
-  const Segment& seg = library_.graph.segments[playback_.segment];
-  const SegmentMotion& m = library_.segment_motion[playback_.segment];
-  // A held pose that goes nowhere: every frame is the same, so its end can come at any frame.
+// A held pose that goes nowhere (idle loops): every frame is the same.
+bool LookaheadAvatar::is_standing_loop(int segment) const {
+  const Segment& seg = library_.graph.segments[segment];
+  const SegmentMotion& m = library_.segment_motion[segment];
   return (seg.tags & kTagIdle) && !(seg.tags & kTagTurn) && glm::length(m.end.pos_m) < 0.01f &&
          std::abs(m.end.heading_rad) < 0.02f;
+}
+
+// The tree only looks ahead of the placement it was grown for, so it cannot see what a rotation
+// shuts off: a step steered towards a corner can leave nothing feasible but a stop, and then
+// nothing but standing there for ever. A rotation is kept only if the rotated segment can still
+// be followed the way it goes for `depth` more segments: a moving segment by one that keeps
+// moving, a stop by one that is not a standing loop.
+bool LookaheadAvatar::has_way_on(int segment, const Placement& start, int depth) const {
+  const bool moving = !ends_standing_[static_cast<size_t>(segment)];
+  const Placement end = start.compose(library_.segment_motion[segment].end);
+  for (const Transition& t : library_.graph.successors(segment)) {
+    if (library_.graph.segments[t.to].tags & tree_.config().excluded_tags) continue;
+    if (moving ? ends_standing_[static_cast<size_t>(t.to)] != 0 : is_standing_loop(t.to)) continue;
+    if (segment_feasible(world_, library_.segment_shapes[t.to], end) &&
+        (depth <= 1 || has_way_on(t.to, end, depth - 1)))
+      return true;
+  }
+  return false;
+}
+
+// What is left of the segment goes (almost) nowhere: a standing loop at any frame, a stop once
+// its last foot is down and only the weight settles. Ending it here for a moving child shows a
+// jump of at most this much, and a start no longer waits for the settling.
+bool LookaheadAvatar::may_end_early() const {
+  const vec2 command = control_world_direction(input_);
+  if (playback_.frame <= 0 || glm::dot(command, command) < 1e-8f) return false;
+  const Placement now = root();
+  const Placement end = playback_next_start(library_, playback_);
+  return glm::length(end.pos_m - now.pos_m) < kEarlyEndMove_m &&
+         std::abs(wrap_angle(end.heading_rad - now.heading_rad)) < kEarlyEndTurn_rad;
+}
+
+// A child is a trap when it moves the avatar somewhere from which, as far as the tree has looked
+// (every node of the branch expanded, or at the depth cap), it can only stand still: a pocket of
+// the scene where no motion but a standing loop fits. Taken, the avatar stands there for ever.
+void LookaheadAvatar::find_traps() {
+  traps_.clear();
+  const MotionTree& t = tree_;
+  for (int c = t.node(t.root()).first_child; c >= 0; c = t.node(c).next_sibling) {
+    if (is_standing_loop(t.node(c).segment)) continue;  // standing where it is, not going anywhere
+    bool trap = true;
+    visit_.clear();
+    visit_.push_back(c);
+    while (trap && !visit_.empty()) {
+      const int i = visit_.back();
+      visit_.pop_back();
+      const MotionTreeNode& n = t.node(i);
+      if ((i != c && !is_standing_loop(n.segment)) || (!n.expanded && n.depth < t.config().max_depth)) trap = false;
+      for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) visit_.push_back(k);
+    }
+    if (trap) traps_.push_back(t.node(c).segment);
+  }
+}
+
+// Steering mode's choice, while a direction is held. The tree's look-ahead undervalues walking
+// on: it places every future step unsteered, so a turn it sees as two wide turning steps, which
+// the steering makes in a few frames, often loses the branch sum to stop, turn on the spot,
+// start. So a moving avatar takes a child that ends standing only if no child that keeps moving
+// is feasible; and no avatar walks into a trap (find_traps) while anything else is feasible.
+int LookaheadAvatar::select_child(const ChildVeto* veto) {
+  const int best = tree_.select_child(veto);
+  const vec2 command = control_world_direction(input_);
+  if (best < 0 || tree_.config().steer_rad_per_s <= 0.0f || glm::dot(command, command) < 1e-8f) return best;
+  find_traps();
+  if (!ends_standing_[static_cast<size_t>(playback_.segment)]) {
+    const SteeredChoice keep_moving(traps_, &ends_standing_, veto);
+    const int moving = tree_.select_child(&keep_moving);
+    if (moving >= 0) return moving;
+  }
+  if (traps_.empty()) return best;
+  const SteeredChoice no_trap(traps_, nullptr, veto);
+  const int free = tree_.select_child(&no_trap);
+  return free >= 0 ? free : best;
 }
 
 AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
@@ -91,15 +195,15 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   int child = -1;
   if (!playback_at_end(library_, playback_)) {
     if (tree_.config().steer_rad_per_s <= 0.0f) return result;
-    if (!leave_standing_loop()) {
+    if (!may_end_early()) {
       steer();
       return result;
     }
-    child = tree_.select_child(veto);
+    child = select_child(veto);
     if (child < 0 || (library_.graph.segments[tree_.node(child).segment].tags & kTagIdle)) return result;
     playback_.frame = library_.graph.segments[playback_.segment].num_frames();  // its end, now
   } else {
-    child = tree_.select_child(veto);
+    child = select_child(veto);
   }
 
   result.segment_changed = true;

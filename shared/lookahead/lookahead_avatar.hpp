@@ -11,6 +11,9 @@
 #include "lookahead/control_input.hpp"
 #include "lookahead/motion_tree.hpp"
 
+#include <cstdint>
+#include <vector>
+
 namespace foresight {
 
 struct AvatarStepResult {
@@ -45,7 +48,15 @@ class LookaheadAvatar {
 
  private:
   void steer();
-  bool leave_standing_loop() const;
+  bool is_standing_loop(int segment) const;
+  bool has_way_on(int segment, const Placement& start, int depth) const;
+  bool may_end_early() const;
+  int select_child(const ChildVeto* veto);
+  void find_traps();
+
+  static constexpr int kWayOnDepth = 2;  // segments a rotation must leave open ahead
+  static constexpr float kEarlyEndMove_m = 0.02f;
+  static constexpr float kEarlyEndTurn_rad = 0.035f;  // 2 deg
 
   const MotionLibrary& library_;
   const CollisionWorld& world_;
@@ -55,6 +66,9 @@ class LookaheadAvatar {
   int fallback_segment_ = -1;
   int fallbacks_ = 0;
   int rejected_inputs_ = 0;
+  std::vector<uint8_t> ends_standing_;  ///< Per graph segment: a standing loop may follow it.
+  std::vector<int> traps_;              ///< find_traps(): segments of the root's trap children.
+  std::vector<int> visit_;              ///< Scratch stack (reserved once).
 };
 
 /// The idle segment a library falls back to: tagged idle (not crouch, not fight), moving least.

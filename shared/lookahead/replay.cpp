@@ -124,12 +124,17 @@ void ReplayRun::measure(double t_s) {
     ++angle_frames_;
   }
   if (reference_dir_ == vec2(0.0f) || angle_between_deg(command, reference_dir_) > kFollowAngle_deg) {
+    pending_ = Response{};
+    pending_.at_s = t_s;
+    pending_.change_deg = reference_dir_ == vec2(0.0f) ? 180.0f : angle_between_deg(command, reference_dir_);
+    pending_.segment_at_change = avatar_->playback().segment;
     reference_dir_ = command;
     pending_response_ = true;
-    pending_since_s_ = t_s;
   }
   if (pending_response_ && moving && angle_between_deg(command, velocity) <= kFollowAngle_deg) {
-    result_.response_ms.push_back((t_s - pending_since_s_) * 1000.0);
+    pending_.ms = (t_s - pending_.at_s) * 1000.0;
+    pending_.segment_at_response = avatar_->playback().segment;
+    result_.responses.push_back(pending_);
     pending_response_ = false;
   }
 }
@@ -141,6 +146,13 @@ ReplayResult ReplayRun::finish() {
     if (angle_frames_ > 0) result_.mean_command_angle_deg = angle_sum_deg_ / static_cast<double>(angle_frames_);
   }
   return std::move(result_);
+}
+
+std::vector<double> response_ms(const ReplayResult& result) {
+  std::vector<double> ms;
+  ms.reserve(result.responses.size());
+  for (const Response& r : result.responses) ms.push_back(r.ms);
+  return ms;
 }
 
 ReplayResult replay_recording(const MotionLibrary& library, const CollisionWorld& world,

@@ -41,6 +41,16 @@ struct ReplayConfig {
   TransitionStatistics statistics;  ///< For strategies 3/4 (learn_statistics); may be empty.
 };
 
+/// One command-direction change the avatar followed (ReplayResult::responses).
+struct Response {
+  double at_s = 0;          ///< Display time of the change.
+  double ms = 0;            ///< Until the velocity was within 30 deg of the command.
+  float change_deg = 0;     ///< Angle from the command before; 180 for a command after a stop.
+  int segment_at_change = -1;    ///< Segment playing when the command changed.
+  int segment_at_response = -1;  ///< Segment playing when the avatar followed.
+  bool operator==(const Response&) const = default;
+};
+
 struct ReplayResult {
   bool reached_goal = false;
   double time_to_goal_s = 0;  ///< t_k of the first display frame with the root in the goal.
@@ -52,9 +62,9 @@ struct ReplayResult {
   /// displacement over the last ~0.2 s), over frames with a command and a speed > 0.2 m/s.
   double mean_command_angle_deg = 0;
   /// Per command-direction change (a command > 30 deg from the last one, or a command after a
-  /// stop): ms until the velocity is within 30 deg of it. Changes superseded or cancelled
+  /// stop): how long until the velocity was within 30 deg of it. Changes superseded or cancelled
   /// (stop) before the avatar follows are not counted.
-  std::vector<double> response_ms;
+  std::vector<Response> responses;
   std::vector<int> transitions_taken;  ///< Graph transitions entered, in order (strategy 3).
   std::vector<vec2> path;              ///< Root position per display frame.
   std::string error;                   ///< Non-empty when the replay could not start.
@@ -108,10 +118,13 @@ class ReplayRun {
   int velocity_window_ = 6;  // display frames in ~0.2 s
   vec2 reference_dir_{0.0f};
   bool pending_response_ = false;
-  double pending_since_s_ = 0;
+  Response pending_;
   // Scratch for the FK re-check (sized once).
   PoseCheckScratch check_scratch_;
 };
+
+/// The responses' times (ms), in order.
+std::vector<double> response_ms(const ReplayResult& result);
 
 /// Replays the recording from its start until the goal (with stop_at_goal), max_seconds, or
 /// grace_after_end_s past its last sample. result.error is set when it could not start.

@@ -29,6 +29,22 @@ BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, float margin
   return v;
 }
 
+BodyVolume enclosing_volume(const BodyVolume& a, const BodyVolume& b) {
+  BodyVolume out;
+  out.y_min_m = std::min(a.y_min_m, b.y_min_m);
+  out.y_max_m = std::max(a.y_max_m, b.y_max_m);
+  const float d = glm::length(b.center_m - a.center_m);
+  if (d + b.radius_m <= a.radius_m) {  // b inside a
+    out.center_m = a.center_m, out.radius_m = a.radius_m;
+  } else if (d + a.radius_m <= b.radius_m) {  // a inside b
+    out.center_m = b.center_m, out.radius_m = b.radius_m;
+  } else {
+    out.radius_m = 0.5f * (d + a.radius_m + b.radius_m);
+    out.center_m = a.center_m + (b.center_m - a.center_m) * ((out.radius_m - a.radius_m) / d);
+  }
+  return out;
+}
+
 bool any_discs_overlap(std::span<BodyVolume> bodies) {
   float widest = 0.0f;
   for (const BodyVolume& b : bodies) widest = std::max(widest, b.radius_m);

@@ -20,6 +20,9 @@ struct BodyVolume {
 BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, float margin_m = 0.08f,
                                  float head_top_m = 0.12f);
 
+/// The smallest volume holding both: the disc enclosing both discs, both height ranges.
+BodyVolume enclosing_volume(const BodyVolume& a, const BodyVolume& b);
+
 /// The volume moved by a ground placement (rotation about the disc's centre does not change a disc).
 inline BodyVolume place(const BodyVolume& v, const Placement& p) {
   return {p.apply(v.center_m), v.radius_m, v.y_min_m, v.y_max_m};

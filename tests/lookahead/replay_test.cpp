@@ -47,7 +47,7 @@ TEST(Replay, ShippedRecordingsReachTheirGoalsWithoutCollisions) {
     EXPECT_LE(r.time_to_goal_s, rec.duration_s());
     EXPECT_GT(r.avg_tree_size, 10.0);
     EXPECT_FALSE(r.transitions_taken.empty());
-    EXPECT_FALSE(r.response_ms.empty());
+    EXPECT_FALSE(r.responses.empty());
     EXPECT_GT(r.mean_command_angle_deg, 0.0);
     EXPECT_LT(r.mean_command_angle_deg, 90.0);
     ASSERT_FALSE(r.path.empty());
@@ -74,7 +74,7 @@ TEST(Replay, IsDeterministicWithAnExpansionBudget) {
   EXPECT_EQ(a.path, b.path);
   EXPECT_EQ(a.transitions_taken, b.transitions_taken);
   EXPECT_EQ(a.avg_tree_size, b.avg_tree_size);
-  EXPECT_EQ(a.response_ms, b.response_ms);
+  EXPECT_EQ(a.responses, b.responses);
 }
 
 TEST(Replay, WithNoBudgetTheAvatarHoldsAndNeverCollides) {

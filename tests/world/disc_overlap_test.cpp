@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 namespace foresight {
@@ -49,6 +50,23 @@ TEST(DiscOverlap, TouchingIsNotOverlappingAndOneWideBodyIsFound) {
   EXPECT_TRUE(any_discs_overlap(wide));
   std::vector<BodyVolume> none;
   EXPECT_FALSE(any_discs_overlap(none));
+}
+
+TEST(EnclosingVolume, HoldsBothDiscsAndBothHeights) {
+  const BodyVolume a{vec2(0.0f, 0.0f), 0.3f, 0.0f, 1.7f};
+  const BodyVolume b{vec2(0.5f, 0.2f), 0.2f, -0.01f, 1.8f};
+  const BodyVolume inside{vec2(0.05f, 0.0f), 0.1f, 0.1f, 1.0f};
+  for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, a}}) {
+    const BodyVolume e = enclosing_volume(p, q);
+    for (const BodyVolume& v : {p, q}) EXPECT_LE(glm::length(v.center_m - e.center_m) + v.radius_m, e.radius_m + 1e-5f);
+    // The smallest such disc: its diameter spans both discs along the line through their centres.
+    EXPECT_NEAR(2.0f * e.radius_m, glm::length(b.center_m - a.center_m) + a.radius_m + b.radius_m, 1e-5f);
+    EXPECT_FLOAT_EQ(e.y_min_m, -0.01f);
+    EXPECT_FLOAT_EQ(e.y_max_m, 1.8f);
+  }
+  const BodyVolume e = enclosing_volume(inside, a);  // one inside the other: the outer one
+  EXPECT_EQ(e.center_m, a.center_m);
+  EXPECT_FLOAT_EQ(e.radius_m, a.radius_m);
 }
 
 }  // namespace

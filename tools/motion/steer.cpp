@@ -55,10 +55,9 @@ int command_steer(const MotionSource& source, const SteerOptions& o) {
                 input.camera_dir == vec2(0.0f) ? "  (no key pressed)" : "");
   }
   ReplayResult r = run.finish();
-  std::sort(r.response_ms.begin(), r.response_ms.end());
-  const auto pct = [&](double p) {
-    return r.response_ms.empty() ? 0.0 : r.response_ms[static_cast<size_t>(p * (r.response_ms.size() - 1))];
-  };
+  std::vector<double> ms = response_ms(r);
+  std::sort(ms.begin(), ms.end());
+  const auto pct = [&](double p) { return ms.empty() ? 0.0 : ms[static_cast<size_t>(p * (ms.size() - 1))]; };
   std::printf("%s after %.1f s; mean tree %.0f nodes; %d stops with nothing feasible; %lld colliding "
               "frames; command-to-motion angle %.1f deg; response p50 %.0f ms, p95 %.0f ms\n",
               r.reached_goal ? "goal reached" : "goal NOT reached",

@@ -1,7 +1,7 @@
 // foresight-record: generate a recording with the scripted player (recording_generator.hpp).
 //   foresight-record --scene maze --seed 1 --out data/recordings/maze_train.json
 //                    [--goal NAME] [--spawn NAME] [--motions DIR] [--name NAME]
-//                    [--budget 200] [--max-seconds 240] [--trace PATH.csv]
+//                    [--budget 200] [--max-seconds 240] [--steer-deg-per-s 0] [--trace PATH.csv]
 // Prints the route length, the duration, the samples and whether the goal was reached; exits 0
 // when it was, 2 when the recording was written but the goal not reached, 1 on errors.
 #include "library/library_source.hpp"
@@ -35,8 +35,14 @@ int main(int argc, char** argv) {
   app.add_option("--max-seconds", config.replay.max_seconds, "Time cap of the recording")
       ->check(CLI::Range(1.0, 36000.0))
       ->capture_default_str();
+  float steer_deg_per_s = 0.0f;
+  app.add_option("--steer-deg-per-s", steer_deg_per_s,
+                 "Root steering of the avatar between segment ends (MotionTreeConfig::steer_rad_per_s; 0: off)")
+      ->check(CLI::Range(0.0f, 3600.0f))
+      ->capture_default_str();
   app.add_option("--trace", trace, "Also write the avatar's root per frame (CSV: t, x, z) here");
   CLI11_PARSE(app, argc, argv);
+  config.replay.tree.steer_rad_per_s = radians(steer_deg_per_s);
 
   MotionSource source;
   source.motions_dir = motions;

@@ -65,11 +65,11 @@ class Catalogue {
   }
   // Standing -> first step and last step -> standing, on either foot.
   void start_stop(const std::string& prefix, uint32_t tags, FamilyId standing, FamilyId gait,
-                  int frames, StepTiming start) {
+                  int start_frames, int stop_frames, StepTiming start) {
     for (int side = 0; side < 2; ++side) {
-      step(prefix + "_start", tags, side, standing, gait, frames, 0.0f, 0.0f, speed_of(gait),
+      step(prefix + "_start", tags, side, standing, gait, start_frames, 0.0f, 0.0f, speed_of(gait),
            start);
-      step(prefix + "_stop", tags, side, gait, standing, frames, 0.0f, speed_of(gait), 0.0f);
+      step(prefix + "_stop", tags, side, gait, standing, stop_frames, 0.0f, speed_of(gait), 0.0f);
     }
   }
   void add(const LocomotionSpec& spec) { out_.push_back(spec); }
@@ -88,9 +88,9 @@ void add_spot_turns(Catalogue& c, const std::string& prefix, uint32_t tags, Fami
   const float accept_s = gait_family(family).style.weight_accept_s;
   for (int side = 0; side < 2; ++side) {
     const int other = 1 - side;
-    const float open_land = 0.34f, close_land = 0.62f;
-    const std::array<SpotStep, 2> steps = {SpotStep{side, 0.0f, 0.12f, open_land, 1.0f},
-                                           SpotStep{other, 0.28f, 0.40f, close_land, 1.0f}};
+    const float open_land = 0.22f, close_land = 0.40f;
+    const std::array<SpotStep, 2> steps = {SpotStep{side, 0.0f, 0.08f, open_land, 1.0f},
+                                           SpotStep{other, 0.18f, 0.26f, close_land, 1.0f}};
     // Ends once the closing foot carries its weight (the standing boundary has both loaded).
     const int frames = static_cast<int>(std::ceil((close_land + accept_s) * kFps));
     c.add(spot_turn_spec(prefix + (side == kLeft ? "_turn_left_90" : "_turn_right_90"),
@@ -120,7 +120,7 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   StepTiming walk_start;
   walk_start.heel_off_s = 0.0f;
   walk_start.lift_s = 0.15f;
-  c.start_stop("walk", loco, idle, kWalk, 18, walk_start);
+  c.start_stop("walk", loco, idle, kWalk, 15, 12, walk_start);
 
   // Running (flight phase: the other foot is in the air at every boundary).
   c.steady("run", loco | kTagRun, kRun, 11, {{"22", 22.5f, 11}});
@@ -135,15 +135,15 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   StepTiming crouch_start;
   crouch_start.heel_off_s = 0.02f;
   crouch_start.lift_s = 0.16f;
-  c.start_stop("crouch_walk", crouching, crouch_idle, kCrouchWalk, 18, crouch_start);
+  c.start_stop("crouch_walk", crouching, crouch_idle, kCrouchWalk, 18, 18, crouch_start);
 
   // Crouch down / stand up: the feet stay, the body sinks or rises (in place: kTagIdle).
   {
-    LocomotionSpec d = transition_spec("crouch_down", kTagIdle, idle, crouch_idle, frames_s(24),
+    LocomotionSpec d = transition_spec("crouch_down", kTagIdle, idle, crouch_idle, frames_s(15),
                                        Placement{}, g);
     d.style_blend_end_s = d.duration_s;
     c.add(d);
-    LocomotionSpec u = transition_spec("stand_up", kTagIdle, crouch_idle, idle, frames_s(24),
+    LocomotionSpec u = transition_spec("stand_up", kTagIdle, crouch_idle, idle, frames_s(15),
                                        Placement{}, g);
     u.style_blend_end_s = u.duration_s;
     c.add(u);
@@ -152,9 +152,9 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   for (int side = 0; side < 2; ++side) {
     const float m = side_sign(side);
     LocomotionSpec s = transition_spec(side == kLeft ? "side_step_left" : "side_step_right", loco,
-                                       idle, idle, frames_s(18), {vec2(m * 0.27f, 0.0f), 0.0f}, g);
-    set_step(s, side, 0.0f, 0.12f, 0.30f);
-    set_step(s, 1 - side, 0.26f, 0.32f, 0.45f);
+                                       idle, idle, frames_s(13), {vec2(m * 0.27f, 0.0f), 0.0f}, g);
+    set_step(s, side, 0.0f, 0.07f, 0.17f);
+    set_step(s, 1 - side, 0.12f, 0.15f, 0.25f);
     c.add(s);
   }
   // Turning on the spot (kTagTurn only: neither a hold nor travel).
@@ -162,9 +162,9 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   add_spot_turns(c, "crouch_idle", kTagCrouch, crouch_idle);
   {
     const std::array<SpotStep, 4> steps = {
-        SpotStep{kLeft, 0.0f, 0.12f, 0.30f, 0.5f}, SpotStep{kRight, 0.22f, 0.30f, 0.48f, 0.5f},
-        SpotStep{kLeft, 0.40f, 0.48f, 0.66f, 1.0f}, SpotStep{kRight, 0.58f, 0.66f, 0.84f, 1.0f}};
-    c.add(spot_turn_spec("idle_turn_180", kTagTurn, idle, frames_s(30), kPi, steps, g));
+        SpotStep{kLeft, 0.0f, 0.08f, 0.21f, 0.5f}, SpotStep{kRight, 0.15f, 0.21f, 0.34f, 0.5f},
+        SpotStep{kLeft, 0.28f, 0.34f, 0.46f, 1.0f}, SpotStep{kRight, 0.41f, 0.46f, 0.59f, 1.0f}};
+    c.add(spot_turn_spec("idle_turn_180", kTagTurn, idle, frames_s(21), kPi, steps, g));
   }
   return c.take();
 }
