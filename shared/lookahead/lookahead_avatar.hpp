@@ -6,7 +6,9 @@
 //   step()           play one frame; at a segment end take the tree's best child
 // When the tree has no feasible child at a segment end, the avatar falls back to the library's
 // idle segment placed where it stands (if that is collision-free), else holds its last pose: it
-// never moves into an obstacle.
+// never moves into an obstacle. With MotionTreeConfig::steer_rad_per_s > 0 (steering mode) it
+// also steers the playing segment, ends settling segments early and filters the tree's choice
+// while a direction is held (lookahead_avatar.cpp, docs/LOOKAHEAD.md).
 #include "library/playback.hpp"
 #include "lookahead/control_input.hpp"
 #include "lookahead/motion_tree.hpp"

@@ -42,11 +42,13 @@ struct MotionTreeConfig {
   /// Segments with any of these tags are never added: a player steering with arrow keys does not
   /// mean to throw punches (SegmentTag bits, graph/motion_graph.hpp).
   uint32_t excluded_tags = kTagFight;
-  /// Root steering (0: off, the paper's controller): while a locomotion segment plays, its
-  /// remaining frames are rotated about the avatar's root towards the command by at most this
-  /// much per second (if the rotated segment is collision-free; the tree then regrows from it),
-  /// and a standing loop is left at any frame for a moving child. Games do the same; the feet
-  /// slide by the rotation.
+  /// Steering mode (0: off, the paper's controller), applied by LookaheadAvatar while a direction
+  /// is held: a playing locomotion segment is rotated about the avatar's root towards the command
+  /// by at most this much per second (if the rotated segment is collision-free and leaves a way
+  /// on; the tree then regrows from it), a segment whose rest goes nowhere (a standing loop, a
+  /// stop's settling) is left early for a moving child, a moving avatar does not stop while it
+  /// can keep moving, and no child that can only stand still afterwards is taken
+  /// (docs/LOOKAHEAD.md "Steering mode"). Games turn the root the same way; the feet slide.
   float steer_rad_per_s = 0.0f;
 };
 
