@@ -26,19 +26,34 @@ float segment_fps(const MotionLibrary& library, int segment) {
   return library.clips[static_cast<size_t>(clip)].fps;
 }
 
-bool same_playthrough(const PlaybackState& a, const PlaybackState& b) {
-  return a.segment == b.segment && a.incoming_transition == b.incoming_transition &&
-         a.segment_start.pos_m == b.segment_start.pos_m &&
-         a.segment_start.heading_rad == b.segment_start.heading_rad && b.frame >= a.frame;
+// One play-through of a segment, `b` later, `elapsed_frames` of clip time after `a`. Steering mode
+// (docs/LOOKAHEAD.md) turns a playing segment about the root, so its start changes while it
+// plays; then b's frame is a's plus the time between them, where a new play-through of the same
+// segment would have played a's rest first.
+bool same_playthrough(const MotionLibrary& library, const PlaybackState& a, const PlaybackState& b,
+                      double elapsed_frames) {
+  if (a.segment != b.segment || a.incoming_transition != b.incoming_transition || b.frame < a.frame) return false;
+  if (a.segment_start.pos_m == b.segment_start.pos_m && a.segment_start.heading_rad == b.segment_start.heading_rad)
+    return true;
+  const double same = b.frame - a.frame;
+  const double again = segment_frames(library, a.segment) - a.frame + b.frame;
+  return std::abs(same - elapsed_frames) < std::abs(again - elapsed_frames);
 }
 
 // The state `alpha` of the way from `a` to `b` (b later). Within one play-through of a segment
-// the frame moves linearly; otherwise `a` plays to its end, then `b`'s segment from its start
-// (skipped segments in between, if packets were lost, are not reconstructed).
+// the frame moves linearly (and a steered start turns with it); otherwise `a` plays to its end,
+// then `b`'s segment from its start (skipped segments in between, if packets were lost, are not
+// reconstructed).
 void interpolate(const MotionLibrary& library, const PlaybackState& a, const PlaybackState& b,
-                 double alpha, ShownAvatar& out) {
-  if (same_playthrough(a, b)) {
+                 double alpha, double elapsed_frames, ShownAvatar& out) {
+  if (same_playthrough(library, a, b, elapsed_frames)) {
     out.state = a;
+    if (a.segment_start.heading_rad != b.segment_start.heading_rad || a.segment_start.pos_m != b.segment_start.pos_m) {
+      const float w = static_cast<float>(alpha);
+      out.state.segment_start.pos_m = glm::mix(a.segment_start.pos_m, b.segment_start.pos_m, w);
+      out.state.segment_start.heading_rad =
+          a.segment_start.heading_rad + w * wrap_angle(b.segment_start.heading_rad - a.segment_start.heading_rad);
+    }
     advance_frames(library, out.state, out.frame_alpha, alpha * (b.frame - a.frame));
     return;
   }
@@ -136,7 +151,8 @@ ShownAvatar SnapshotBuffer::show(const MotionLibrary& library, size_t j, const A
   if (t <= t0) {
     shown.state = a.state;
   } else if (b) {
-    interpolate(library, a.state, b->state, (t - t0) / (t1 - t0), shown);
+    interpolate(library, a.state, b->state, (t - t0) / (t1 - t0), (t1 - t0) * segment_fps(library, a.state.segment),
+                shown);
     shown.flags = b->flags;
   } else {
     shown.state = a.state;

@@ -75,6 +75,8 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_challenges_capped_total", "counter", "Connect requests ignored over the per-tick cap.", static_cast<double>(m.challenges_capped));
   line(out, "foresight_avatar_contacts_total", "counter", "Ticks with two avatars' bodies overlapping (must stay 0).", static_cast<double>(m.avatar_contacts));
   line(out, "foresight_fallbacks_total", "counter", "Segment ends with nothing feasible ahead.", static_cast<double>(m.fallbacks));
+  line(out, "foresight_steered_frames_total", "counter", "Frames steering mode turned an avatar's playing motion.",
+       static_cast<double>(m.steered_frames));
   line(out, "foresight_fighter_strikes_total", "counter", "Fighters' strikes judged.", static_cast<double>(m.fighter_strikes));
   line(out, "foresight_fighter_hits_total", "counter", "Fighters' strikes that hit.", static_cast<double>(m.fighter_hits));
   line(out, "foresight_uptime_seconds", "gauge", "Since the server started.", m.uptime_s);

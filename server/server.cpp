@@ -61,6 +61,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   tree_config_.strategy = config_.strategy;
   tree_config_.max_nodes = std::max(config_.tree_max_nodes, 16);
   tree_config_.max_depth = std::max(config_.tree_max_depth, 1);
+  tree_config_.steer_rad_per_s = radians(std::clamp(config_.steer_deg_per_s, 0.0f, 3600.0f));
   terrain_mode_ = config_.locomotion == Locomotion::kTerrain ||
                   (config_.locomotion == Locomotion::kAuto &&
                    (!scene_.terrain.height_field.empty() || !scene_.terrain.steps.empty()));
@@ -250,7 +251,7 @@ void Server::publish_admin(Clock::time_point now) {
   m.sessions_opened = c.sessions_opened, m.sessions_timed_out = c.sessions_timed_out;
   m.sessions_closed = c.sessions_closed, m.refused = c.refused;
   m.challenges_sent = c.challenges_sent, m.challenges_capped = c.challenges_capped, m.joins_deferred = c.joins_deferred;
-  m.avatar_contacts = c.avatar_contacts, m.fallbacks = c.fallbacks;
+  m.avatar_contacts = c.avatar_contacts, m.fallbacks = c.fallbacks, m.steered_frames = c.steered_frames;
   m.fighter_strikes = c.fighter_strikes, m.fighter_hits = c.fighter_hits;
   m.terrain_steps = c.terrain_steps, m.terrain_pivots = c.terrain_pivots, m.terrain_refusals = c.terrain_refusals;
   m.avatars_sent = c.avatars_sent, m.avatars_referenced = c.avatars_referenced;
@@ -836,9 +837,10 @@ void Server::advance(TickRecord& record) {
       const ReservationVeto veto(reservations_, library_, static_cast<int>(p->avatar_id));
       const AvatarStepResult r = p->avatar->step(&veto);
       if (r.fallback) ++counters_.fallbacks;
-      if (r.segment_changed) {  // committed: reserve it now for the players deciding after
+      if (r.steered) ++counters_.steered_frames;
+      if (r.segment_changed || r.steered) {  // committed: reserve it now for the players deciding after
         const PlaybackState& s = p->avatar->playback();
-        reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, 0, s.segment_start);
+        reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, s.frame, s.segment_start);
       }
     }
   }

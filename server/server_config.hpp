@@ -41,6 +41,9 @@ struct ServerConfig {
   /// this many ticks (1: every tick, the lab's replay semantics).
   int resort_interval_ticks = 4;
   int tree_max_depth = 8;
+  /// Steering mode of the avatars' look-ahead (MotionTreeConfig::steer_rad_per_s, in deg/s; 0:
+  /// off, the paper's controller). The lab's responsive controller runs at 540 (docs/LAB.md).
+  float steer_deg_per_s = 0.0f;
   /// Per session: more packets than this per second are dropped (counted); input commands come
   /// at most at the client's frame rate.
   int max_packets_per_s = 120;

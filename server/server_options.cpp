@@ -43,6 +43,10 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
                  "Re-prioritise trees at least every N ticks (also on command change and before decisions)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--tree-depth", c.tree_max_depth, "Tree depth cap")->check(CLI::Range(1, 64))->capture_default_str();
+  app.add_option("--steer-deg-per-s", c.steer_deg_per_s,
+                 "Steering mode: turn the playing motion towards the command up to this fast (0: off; 540: the lab's responsive controller)")
+      ->check(CLI::Range(0.0f, 3600.0f))
+      ->capture_default_str();
   app.add_option("--max-challenges-per-tick", c.max_challenges_per_tick,
                  "Answers to unverified addresses per tick at most (challenges, bad-cookie refusals)")
       ->check(CLI::Range(1, 100000))

@@ -84,28 +84,31 @@ void LookaheadAvatar::set_input(const ControlInput& input) {
 
 GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(budget); }
 
-void LookaheadAvatar::steer() {
+bool LookaheadAvatar::steer(const ChildVeto* veto) {
   const vec2 command = control_world_direction(input_);
-  if (glm::dot(command, command) < 1e-8f) return;
+  if (glm::dot(command, command) < 1e-8f) return false;
   const Segment& seg = library_.graph.segments[playback_.segment];
-  if (!(seg.tags & kTagLocomotion)) return;
+  if (!(seg.tags & kTagLocomotion)) return false;
   const Placement now = root();
   const float want = std::atan2(command.x, command.y);  // heading convention: forward = (sin h, cos h)
   const float error = wrap_angle(want - now.heading_rad);
   const float fps = library_.clips[seg.clip].fps;
   const float step = tree_.config().steer_rad_per_s / (fps > 0.0f ? fps : 30.0f);
   // Within 15 deg the clips' own turns do: steering there would regrow the tree every frame.
-  if (std::abs(error) < radians(15.0f)) return;
+  if (std::abs(error) < radians(15.0f)) return false;
   const float turn = std::clamp(error, -step, step);
   // Rotate the segment's placement about where the root stands now.
   const Placement rotated{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
                           playback_.segment_start.heading_rad + turn};
+  // The veto sees the whole rotated segment (conservative: its played frames too).
   if (!segment_feasible(world_, library_.segment_shapes[playback_.segment], rotated) ||
+      (veto != nullptr && veto->blocks(playback_.segment, rotated)) ||
       !has_way_on(playback_.segment, rotated, kWayOnDepth))
-    return;
+    return false;
   playback_.segment_start = rotated;
   tree_.reset(playback_.segment, rotated, playback_.incoming_transition);
   tree_.set_command(command, root(), input_.crouch);
+  return true;
 }
 
 // A held pose that goes nowhere (idle loops): every frame is the same.
@@ -196,7 +199,7 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   if (!playback_at_end(library_, playback_)) {
     if (tree_.config().steer_rad_per_s <= 0.0f) return result;
     if (!may_end_early()) {
-      steer();
+      result.steered = steer(veto);
       return result;
     }
     child = select_child(veto);

@@ -22,6 +22,7 @@ struct AvatarStepResult {
   bool segment_changed = false;  ///< A new segment started this frame.
   bool fallback = false;         ///< ... because nothing feasible was found (idle or hold).
   int transition = -1;           ///< Graph transition taken, -1 for a fallback.
+  bool steered = false;          ///< Steering mode rotated the playing segment (a new start).
 };
 
 class LookaheadAvatar {
@@ -33,7 +34,8 @@ class LookaheadAvatar {
   /// Non-finite or over-long directions are refused: the input becomes "stop" and is counted.
   void set_input(const ControlInput& input);
   GrowResult grow(const GrowBudget& budget);
-  /// `veto` (optional) rules out children at the decision, and the idle fallback too.
+  /// `veto` (optional) rules out children at the decision, the idle fallback and, in steering
+  /// mode, rotations of the playing segment.
   AvatarStepResult step(const ChildVeto* veto = nullptr);
 
   const PlaybackState& playback() const { return playback_; }
@@ -49,7 +51,7 @@ class LookaheadAvatar {
   int fallback_segment() const { return fallback_segment_; }
 
  private:
-  void steer();
+  bool steer(const ChildVeto* veto);
   bool is_standing_loop(int segment) const;
   bool has_way_on(int segment, const Placement& start, int depth) const;
   bool may_end_early() const;

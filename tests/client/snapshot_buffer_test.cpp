@@ -125,6 +125,38 @@ TEST(SnapshotBuffer, SegmentChangePlaysTheEarlierSegmentToItsEnd) {
   EXPECT_NEAR(shown_frame(out[0]), 1.0, 1e-4);
 }
 
+// Steering mode turns a playing segment: its start changes from one snapshot to the next while
+// the frame runs on. That is one play-through, shown turning, not the segment played to its end
+// and started again; a start that moved by a whole play-through still is a new one.
+TEST(SnapshotBuffer, ASteeredStartTurnsWithinOnePlayThrough) {
+  const MotionLibrary& lib = library();
+  const int seg = long_segment(12);
+  const int n = lib.graph.segments[static_cast<size_t>(seg)].num_frames();
+  AvatarEntry a = entry(1, seg, 2), b = entry(1, seg, 5);  // 0.1 s apart: 3 frames at 30 fps
+  b.state.segment_start = Placement{vec2(0.02f, -0.01f), 0.5f};
+  SnapshotBuffer buf;
+  buf.push(0.0, 0.0, {&a, 1});
+  buf.push(0.1, 0.1, {&b, 1});
+  std::vector<ShownAvatar> out;
+  buf.sample(lib, 0.05, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].state.segment, seg);
+  EXPECT_NEAR(shown_frame(out[0]), 3.5, 1e-4);
+  EXPECT_NEAR(out[0].state.segment_start.heading_rad, 0.25f, 1e-5f);
+  EXPECT_NEAR(out[0].state.segment_start.pos_m.x, 0.01f, 1e-5f);
+
+  // Half a second on (15 frames) the same segment one frame later: played to its end and again.
+  AvatarEntry c = entry(2, seg, 1), d = entry(2, seg, 2);
+  d.state.segment_start = Placement{vec2(0.0f, 0.7f), 0.0f};
+  SnapshotBuffer again;
+  again.push(0.0, 0.0, {&c, 1});
+  again.push(static_cast<double>(n) / 30.0, 1.0, {&d, 1});
+  again.sample(lib, 0.1, out);  // 3 frames in: still the first play-through, at its own start
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].state.segment_start.pos_m, c.state.segment_start.pos_m);
+  EXPECT_GT(shown_frame(out[0]), 2.5);
+}
+
 TEST(SnapshotBuffer, AvatarsAppearAndDisappear) {
   const int seg = long_segment(12);
   SnapshotBuffer buf;

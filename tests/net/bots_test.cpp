@@ -51,6 +51,7 @@ TEST(Bots, GoalSeekersConnectWalkAndNeverCollide) {
   ASSERT_TRUE(r.has_server_stats);
   EXPECT_EQ(r.server.players, 6u);
   EXPECT_EQ(r.server.avatar_contacts, 0u);
+  EXPECT_EQ(m.server.counters().steered_frames, 0u) << "steering mode is off by default";
 
   const nlohmann::json j = bots::bot_report_json(r);
   for (const char* key : {"bots", "connected", "refused", "goals_reached", "collisions", "rtt_ms_p50",
@@ -60,6 +61,29 @@ TEST(Bots, GoalSeekersConnectWalkAndNeverCollide) {
   }
   EXPECT_EQ(j["bots"], 6);
   EXPECT_FALSE(j["server_tick_ms_p99"].is_null());
+}
+
+// Steering mode on the server (--steer-deg-per-s): avatars turn their playing motion, each turn
+// is reserved at once, so bodies still never meet, and the clients' shown poses stay out of the
+// scene. Eight goal seekers in the maze's corridors.
+TEST(Bots, SteeredGoalSeekersNeverCollideOrTouch) {
+  server::ServerConfig config = match_config("maze", {});
+  config.steer_deg_per_s = 540.0f;
+  test::BotMatch m(config, 8, bots::BotScript::kGoals);
+  bots::BotFleet fleet(m.server.library(), m.config);
+  ASSERT_TRUE(fleet.ok()) << fleet.error();
+  m.play(fleet, 30 * 40);  // 40 s
+  const bots::BotReport r = fleet.report(m.now);
+  fleet.disconnect_all();
+  EXPECT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.connected, 8);
+  EXPECT_GT(r.walked_m_mean, 10.0);
+  EXPECT_GT(r.goals_reached, 0u);
+  EXPECT_EQ(r.scene_collisions, 0u);
+  EXPECT_EQ(r.avatar_contacts, 0u);
+  EXPECT_EQ(r.invalid_states, 0u);
+  EXPECT_EQ(m.server.counters().avatar_contacts, 0u);
+  EXPECT_GT(m.server.counters().steered_frames, 100u) << "the avatars should have been steered";
 }
 
 TEST(Bots, AGoalSeekerReachesTheGoalInTheMazeAndTheObstacleCourseCrouchingWhereNeeded) {

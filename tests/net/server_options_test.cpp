@@ -61,12 +61,13 @@ TEST(ServerOptions, MistakesInTheFileAreReported) {
   EXPECT_FALSE(parse({"--config", write_file("c.toml", "tick-hz = \"fast\"\n").string()})->error.empty());
   EXPECT_FALSE(parse({"--config", write_file("d.toml", "tick-hz = 100000\n").string()})->error.empty());
   EXPECT_FALSE(parse({"--config", write_file("e.toml", "strategy = \"greedy\"\n").string()})->error.empty());
+  EXPECT_FALSE(parse({"--steer-deg-per-s", "-90"})->error.empty());
   EXPECT_FALSE(parse({"--config", "/nonexistent/foresight.toml"})->error.empty());
 }
 
 TEST(ServerOptions, TheWrittenConfigReadsBackToTheSameConfiguration) {
   const auto first = parse({"--tick-hz", "45", "--strategy", "hybrid", "--budget-ms", "2.25", "--scene", "arena",
-                            "--fighters", "3", "--locomotion", "GRAPH"});
+                            "--fighters", "3", "--locomotion", "GRAPH", "--steer-deg-per-s", "540"});
   ASSERT_TRUE(first->error.empty()) << first->error;
   const std::string text = server_config_text(*first->app);
   EXPECT_NE(text.find("# Look-ahead budget per tick"), std::string::npos) << "each option is explained";
@@ -80,6 +81,8 @@ TEST(ServerOptions, TheWrittenConfigReadsBackToTheSameConfiguration) {
   EXPECT_DOUBLE_EQ(b.lookahead_budget_ms, 2.25);
   EXPECT_EQ(b.scene, "arena");
   EXPECT_EQ(b.fighters, 3);
+  EXPECT_FLOAT_EQ(b.steer_deg_per_s, 540.0f);
+  EXPECT_FLOAT_EQ(ServerConfig{}.steer_deg_per_s, 0.0f) << "steering mode is opt-in";
   EXPECT_EQ(b.port, a.port);
   EXPECT_EQ(b.max_packets_per_s, a.max_packets_per_s);
   EXPECT_EQ(b.tree_max_nodes, a.tree_max_nodes);
