@@ -23,8 +23,8 @@ double percentile(std::vector<double> v, double p) {
 }
 
 // Root steering of the "look-ahead 1 + steering" row (LookaheadAvatar, MotionTreeConfig::steer_rad_per_s):
-// 540 deg/s was the best of 270, 360 and 540 in closed-loop runs with the earlier library; 450 and
-// 630 do no better with this one (docs/LAB.md).
+// 540 deg/s was the best of 270, 360 and 540 in closed-loop runs with the earlier library; with
+// this one 450 and 720 do no better on both scenes together (200 seeds each, docs/LAB.md).
 constexpr float kLabSteerDegPerS = 540.0f;
 
 std::vector<ControllerSpec> lab_controllers(const MotionTreeConfig& base) {
