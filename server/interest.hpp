@@ -3,9 +3,9 @@
 // client's snapshot. Avatars within interest_radius_m of the client's own avatar go in every
 // snapshot; the others only in every far_every-th one (0: never), and beyond far_radius_m (if set)
 // not at all; staggered by client so the far avatars' bytes spread over the snapshots. A uniform
-// grid with cells of the radius finds the near
-// ones in the 3 x 3 cells around the client; the grid is rebuilt once per snapshot (no allocation
-// once its vectors have grown).
+// grid with cells of the radius finds the near ones in the 3 x 3 cells around the client (and
+// those within far_radius_m in the cells that far); the grid is rebuilt once per snapshot (no
+// allocation once its vectors have grown).
 #include "math/types.hpp"
 
 #include <cstdint>

@@ -62,14 +62,23 @@ LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWo
       playback_{start_segment, 0, start, -1},
       fallback_segment_(find_fallback_segment(library)) {
   tree_.reset(start_segment, start);
-  // A segment ends standing when a standing loop may follow it (stops, side steps, turns on the
-  // spot, the loops themselves).
-  ends_standing_.resize(static_cast<size_t>(library.graph.num_segments()));
+  // Per segment, once: is it a standing loop (a held pose that goes nowhere, every frame the
+  // same: idle loops), and does it end standing (a standing loop may follow it: stops, side
+  // steps, turns on the spot, the loops themselves)?
+  const size_t n = static_cast<size_t>(library.graph.num_segments());
+  standing_loop_.resize(n);
+  ends_standing_.resize(n);
+  for (size_t s = 0; s < n; ++s) {
+    const Segment& seg = library.graph.segments[s];
+    const SegmentMotion& m = library.segment_motion[s];
+    standing_loop_[s] = (seg.tags & kTagIdle) && !(seg.tags & kTagTurn) && glm::length(m.end.pos_m) < 0.01f &&
+                        std::abs(m.end.heading_rad) < 0.02f;
+  }
+  for (size_t s = 0; s < n; ++s)
+    for (const Transition& t : library.graph.successors(static_cast<int>(s)))
+      if (standing_loop_[static_cast<size_t>(t.to)]) ends_standing_[s] = 1;
   traps_.reserve(library.graph.transitions.size());
   visit_.reserve(static_cast<size_t>(tree_.config().max_nodes));
-  for (int s = 0; s < library.graph.num_segments(); ++s)
-    for (const Transition& t : library.graph.successors(s))
-      if (is_standing_loop(t.to)) ends_standing_[static_cast<size_t>(s)] = 1;
 }
 
 void LookaheadAvatar::set_input(const ControlInput& input) {
@@ -109,14 +118,6 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   tree_.reset(playback_.segment, rotated, playback_.incoming_transition);
   tree_.set_command(command, root(), input_.crouch);
   return true;
-}
-
-// A held pose that goes nowhere (idle loops): every frame is the same.
-bool LookaheadAvatar::is_standing_loop(int segment) const {
-  const Segment& seg = library_.graph.segments[segment];
-  const SegmentMotion& m = library_.segment_motion[segment];
-  return (seg.tags & kTagIdle) && !(seg.tags & kTagTurn) && glm::length(m.end.pos_m) < 0.01f &&
-         std::abs(m.end.heading_rad) < 0.02f;
 }
 
 // The tree only looks ahead of the placement it was grown for, so it cannot see what a rotation

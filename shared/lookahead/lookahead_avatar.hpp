@@ -52,7 +52,7 @@ class LookaheadAvatar {
 
  private:
   bool steer(const ChildVeto* veto);
-  bool is_standing_loop(int segment) const;
+  bool is_standing_loop(int segment) const { return standing_loop_[static_cast<size_t>(segment)] != 0; }
   bool has_way_on(int segment, const Placement& start, int depth) const;
   bool may_end_early() const;
   int select_child(const ChildVeto* veto);
@@ -70,6 +70,7 @@ class LookaheadAvatar {
   int fallback_segment_ = -1;
   int fallbacks_ = 0;
   int rejected_inputs_ = 0;
+  std::vector<uint8_t> standing_loop_;  ///< Per graph segment: a held pose that goes nowhere.
   std::vector<uint8_t> ends_standing_;  ///< Per graph segment: a standing loop may follow it.
   std::vector<int> traps_;              ///< find_traps(): segments of the root's trap children.
   std::vector<int> visit_;              ///< Scratch stack (reserved once).
