@@ -64,13 +64,16 @@ int bench_bvh(const BvhBenchOptions& o) {
 
 int bench_graph(const GraphBenchOptions& o) {
   std::vector<double> build_ms;
-  AutoGraphReport report;
+  LibraryImportReport imported;
+  const AutoGraphReport& report = imported.graph;
+  MotionSource source;
+  source.motions_dir = o.motions;
   size_t clips = 0, frames = 0;
   for (int run = 0; run < o.runs; ++run) {
     MotionLibrary lib;
     std::string error;
     const auto t0 = Clock::now();
-    if (!motion_library_from_folder(o.motions, {}, {}, lib, &report, error))
+    if (!motion_library_from_folder(source, lib, &imported, error))
       return std::fprintf(stderr, "foresight-bench graph: %s\n", error.c_str()), 1;
     build_ms.push_back(ms_since(t0));
     clips = lib.clips.size();

@@ -1,9 +1,15 @@
 #include "anim/bvh_import.hpp"
 
+#include "anim/fk.hpp"
+#include "anim/humanoid_map.hpp"
+#include "anim/humanoid_retarget.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <limits>
 
 namespace foresight {
 namespace {
@@ -25,7 +31,8 @@ struct Motion {
 
 const glm::dvec3 kAxes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
-Motion motion_from_document(const BvhDocument& doc) {
+// `add[j]`: joint j's position channels add to its OFFSET instead of replacing it (step 0).
+Motion motion_from_document(const BvhDocument& doc, const std::vector<bool>& add) {
   Motion m;
   const int n = static_cast<int>(doc.joints.size());
   for (const BvhJoint& j : doc.joints) {
@@ -47,7 +54,7 @@ Motion motion_from_document(const BvhDocument& doc) {
       for (BvhChannel c : doc.joints[j].channels) {
         const double value = *v++;
         if (bvh_channel_is_position(c))
-          p[bvh_channel_axis(c)] = static_cast<float>(value);  // replaces, never adds
+          p[bvh_channel_axis(c)] = static_cast<float>(value) + (add[j] ? doc.joints[j].offset[bvh_channel_axis(c)] : 0.0f);
         else
           q = q * glm::angleAxis(glm::radians(value), kAxes[bvh_channel_axis(c)]);
       }
@@ -175,6 +182,81 @@ LengthUnit unit_from_body_size(float size) {
   return LengthUnit::kCentimetres;
 }
 
+// The joints that carry the whole body: the ROOT and its single-child chain.
+std::vector<bool> body_carriers(const BvhDocument& doc) {
+  const int n = static_cast<int>(doc.joints.size());
+  std::vector<bool> out(static_cast<size_t>(n), false);
+  for (int j = 0; j >= 0;) {
+    out[static_cast<size_t>(j)] = true;
+    int child = -1, children = 0;
+    for (int c = j + 1; c < n; ++c)
+      if (doc.joints[c].parent == j && !doc.joints[c].end_site) child = c, ++children;
+    j = children == 1 ? child : -1;
+  }
+  return out;
+}
+
+// Step 0 for joints that do not carry the body: channels near the OFFSET replace it, channels
+// near zero add to it.
+std::vector<bool> limb_position_rules(const BvhDocument& doc) {
+  const int n = static_cast<int>(doc.joints.size());
+  std::vector<double> to_offset(static_cast<size_t>(n), 0.0), to_zero(static_cast<size_t>(n), 0.0);
+  const size_t channels = static_cast<size_t>(doc.num_channels());
+  for (int f = 0; f < doc.num_frames; ++f) {
+    const float* v = doc.values.data() + static_cast<size_t>(f) * channels;
+    for (int j = 0; j < n; ++j)
+      for (BvhChannel c : doc.joints[j].channels) {
+        const double value = *v++;
+        if (!bvh_channel_is_position(c)) continue;
+        to_offset[static_cast<size_t>(j)] += std::fabs(value - doc.joints[j].offset[bvh_channel_axis(c)]);
+        to_zero[static_cast<size_t>(j)] += std::fabs(value);
+      }
+  }
+  std::vector<bool> add(static_cast<size_t>(n), false);
+  for (int j = 0; j < n; ++j) add[static_cast<size_t>(j)] = to_zero[static_cast<size_t>(j)] < to_offset[static_cast<size_t>(j)];
+  return add;
+}
+
+vec3 up_vector(UpAxis up) {
+  switch (up) {
+    case UpAxis::kZUp: return {0, 0, 1};
+    case UpAxis::kNegZUp: return {0, 0, -1};
+    case UpAxis::kXUp: return {1, 0, 0};
+    case UpAxis::kNegXUp: return {-1, 0, 0};
+    case UpAxis::kNegYUp: return {0, -1, 0};
+    default: return {0, 1, 0};
+  }
+}
+
+// Median over (up to 64 sampled) frames of the lowest joint's height along `up`, file units.
+float median_lowest(const Motion& m, vec3 up) {
+  std::vector<vec3> gpos;
+  std::vector<quat> grot;
+  std::vector<float> lows;
+  const int samples = std::min(64, m.frames);
+  for (int s = 0; s < samples; ++s) {
+    const int f = samples > 1 ? static_cast<int>(static_cast<int64_t>(s) * (m.frames - 1) / (samples - 1)) : 0;
+    fk_frame(m, f, gpos, grot);
+    float low = std::numeric_limits<float>::max();
+    for (const vec3& p : gpos) low = std::min(low, glm::dot(p, up));
+    lows.push_back(low);
+  }
+  std::nth_element(lows.begin(), lows.begin() + lows.size() / 2, lows.end());
+  return lows[lows.size() / 2];
+}
+
+// The standard unit nearest to `scale` metres per unit, if within a factor of 1.5.
+LengthUnit nearest_unit(float scale) {
+  LengthUnit best = LengthUnit::kAuto;
+  float best_ratio = std::log(1.5f);
+  for (LengthUnit u : {LengthUnit::kMetres, LengthUnit::kCentimetres, LengthUnit::kMillimetres,
+                       LengthUnit::kInches, LengthUnit::kFeet}) {
+    const float r = std::fabs(std::log(scale / length_unit_scale(u)));
+    if (r < best_ratio) best_ratio = r, best = u;
+  }
+  return best;
+}
+
 bool contains_head(std::string_view name) {
   std::string lower(name);
   for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -232,10 +314,37 @@ quat to_y_up(UpAxis up, quat q) {
   return quat(q.w, axis.x, axis.y, axis.z);
 }
 
-void convert_units_and_axes(Motion& m, float scale, UpAxis up) {
-  for (vec3& o : m.offsets) o = to_y_up(up, o * scale);
-  for (vec3& p : m.pos) p = to_y_up(up, p * scale);
+void convert_axes(Motion& m, UpAxis up) {
+  for (vec3& o : m.offsets) o = to_y_up(up, o);
+  for (vec3& p : m.pos) p = to_y_up(up, p);
   for (quat& q : m.rot) q = to_y_up(up, q);
+}
+
+void scale_lengths(Motion& m, float scale) {
+  for (vec3& o : m.offsets) o *= scale;
+  for (vec3& p : m.pos) p *= scale;
+}
+
+Skeleton skeleton_of(const Motion& m) {
+  Skeleton s;
+  s.joint_names = m.names;
+  for (int p : m.parents) s.parents.push_back(static_cast<int16_t>(p));
+  s.rest_offsets_m = m.offsets;
+  s.is_end_site = m.end_site;
+  return s;
+}
+
+// Global positions of up to 16 frames spread over the clip (the humanoid map's input).
+std::vector<vec3> sampled_positions(const Motion& m) {
+  std::vector<vec3> out, gpos;
+  std::vector<quat> grot;
+  const int samples = std::min(16, m.frames);
+  for (int s = 0; s < samples; ++s) {
+    const int f = samples > 1 ? static_cast<int>(static_cast<int64_t>(s) * (m.frames - 1) / (samples - 1)) : 0;
+    fk_frame(m, f, gpos, grot);
+    out.insert(out.end(), gpos.begin(), gpos.end());
+  }
+  return out;
 }
 
 void make_signs_continuous(Motion& m) {
@@ -312,6 +421,8 @@ float length_unit_scale(LengthUnit unit) {
     case LengthUnit::kMetres: return 1.0f;
     case LengthUnit::kCentimetres: return 0.01f;
     case LengthUnit::kInches: return 0.0254f;
+    case LengthUnit::kMillimetres: return 0.001f;
+    case LengthUnit::kFeet: return 0.3048f;
     default: return 0.0f;
   }
 }
@@ -321,6 +432,8 @@ std::string_view length_unit_name(LengthUnit unit) {
     case LengthUnit::kMetres: return "metres";
     case LengthUnit::kCentimetres: return "centimetres";
     case LengthUnit::kInches: return "inches";
+    case LengthUnit::kMillimetres: return "millimetres";
+    case LengthUnit::kFeet: return "feet";
     default: return "auto";
   }
 }
@@ -337,6 +450,14 @@ std::string_view up_axis_name(UpAxis up) {
   }
 }
 
+std::string_view root_position_name(RootPosition rule) {
+  switch (rule) {
+    case RootPosition::kAbsolute: return "absolute";
+    case RootPosition::kRelative: return "relative to OFFSET";
+    default: return "auto";
+  }
+}
+
 bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImportOptions& options,
                    Skeleton& skeleton, Clip& clip, BvhImportReport* report, std::string& error) {
   try {
@@ -345,21 +466,68 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
     if (doc.num_frames < 1) return error = prefix + "no motion frames", false;
     if (!(options.target_fps >= 0.0f && options.target_fps <= 1000.0f))
       return error = prefix + "target fps must be 0 (auto) or in (0, 1000]", false;
+    if (!(options.scale >= 0.0f && options.scale < 1e6f))
+      return error = prefix + "scale must be 0 (auto) or a positive number of metres per unit", false;
 
     BvhImportReport r;
     r.source_frames = doc.num_frames;
     r.source_fps = static_cast<float>(1.0 / doc.frame_time_s);
 
-    Motion m = motion_from_document(doc);
+    // Step 0: both readings of the body carriers' position channels, the one nearer the floor kept.
+    std::vector<bool> add = limb_position_rules(doc);
+    const std::vector<bool> carriers = body_carriers(doc);
+    for (size_t j = 0; j < carriers.size(); ++j)
+      if (carriers[j]) add[j] = options.root == RootPosition::kRelative;
+    Motion m = motion_from_document(doc, add);
+    r.root = options.root == RootPosition::kRelative ? RootPosition::kRelative : RootPosition::kAbsolute;
+    bool carrier_offsets = false;
+    for (size_t j = 0; j < carriers.size(); ++j)
+      carrier_offsets |= carriers[j] && glm::length(doc.joints[j].offset) > 0.0f;
+    if (options.root == RootPosition::kAuto && carrier_offsets) {
+      for (size_t j = 0; j < carriers.size(); ++j)
+        if (carriers[j]) add[j] = true;
+      Motion relative = motion_from_document(doc, add);
+      // The up axis is read from the pelvis, so dummy roots are folded first (on a copy).
+      Motion folded = m;
+      if (anything_moves(folded))
+        while (fold_dummy_root(folded)) {}
+      const vec3 up = up_vector(options.up == UpAxis::kAuto ? detect_up(folded) : options.up);
+      if (std::fabs(median_lowest(relative, up)) < std::fabs(median_lowest(m, up))) {
+        m = std::move(relative);
+        r.root = RootPosition::kRelative;
+      }
+    }
+
     // In a single frame or a frozen pose nothing rotates: a dummy cannot be told from the
     // pelvis, so nothing is folded.
     if (anything_moves(m))
       while (fold_dummy_root(m)) ++r.folded_root_joints;
 
-    r.body_size = body_size(m);
-    r.unit = options.unit == LengthUnit::kAuto ? unit_from_body_size(r.body_size) : options.unit;
     r.up = options.up == UpAxis::kAuto ? detect_up(m) : options.up;
-    convert_units_and_axes(m, length_unit_scale(r.unit), r.up);
+    convert_axes(m, r.up);
+
+    // Step 3: the roles (for the standing height and the canonical skeleton), then the scale.
+    HumanoidMap roles;
+    {
+      const std::vector<vec3> sample = sampled_positions(m);
+      r.humanoid = humanoid_map_find(skeleton_of(m), sample, roles, r.not_humanoid);
+      r.body_size = r.humanoid ? humanoid_stature(roles, sample) : body_size(m);
+    }
+    if (options.scale > 0.0f) {
+      r.scale = options.scale;
+      r.unit = nearest_unit(options.scale);
+    } else if (options.unit != LengthUnit::kAuto) {
+      r.unit = options.unit;
+      r.scale = length_unit_scale(options.unit);
+    } else if (r.humanoid && r.body_size > 0.0f) {
+      r.scale = kCanonicalStandingHeightM / r.body_size;
+      r.unit = nearest_unit(r.scale);
+      r.height_normalised = true;
+    } else {
+      r.unit = unit_from_body_size(r.body_size);
+      r.scale = length_unit_scale(r.unit);
+    }
+    scale_lengths(m, r.scale);
     make_signs_continuous(m);
 
     const double source_fps = 1.0 / doc.frame_time_s;
@@ -371,21 +539,92 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
     if (std::fabs(source_fps - fps) > 1e-3 * fps && !resample(m, doc.frame_time_s, fps, error))
       return error = prefix + error, false;
 
-    const int n = m.num_joints();
-    skeleton = Skeleton{};
-    skeleton.joint_names = std::move(m.names);
-    skeleton.parents.reserve(n);
-    for (int p : m.parents) skeleton.parents.push_back(static_cast<int16_t>(p));
-    skeleton.rest_offsets_m = std::move(m.offsets);
-    skeleton.is_end_site = std::move(m.end_site);
+    if (r.humanoid) {
+      const Skeleton s = skeleton_of(m);
+      const std::vector<vec3> sample = sampled_positions(m);
+      r.standing_height_m = humanoid_stature(roles, sample);
+      r.head_height_m = humanoid_head_height(s, roles, sample);
+      std::vector<vec3> all;
+      Clip whole;
+      whole.num_frames = m.frames;
+      whole.num_joints = m.num_joints();
+      whole.local_pos_m = m.pos;
+      whole.local_rot = m.rot;
+      fk_clip_positions(s, whole, all);
+      std::vector<float> lows;
+      for (int f = 0; f < m.frames; ++f) {
+        float low = std::numeric_limits<float>::max();
+        for (int side = 0; side < 2; ++side)
+          for (int j : {roles.foot[side], roles.toe[side], roles.toe_end[side]})
+            if (j >= 0) low = std::min(low, all[static_cast<size_t>(f) * s.num_joints() + j].y);
+        lows.push_back(low);
+      }
+      std::nth_element(lows.begin(), lows.begin() + lows.size() / 2, lows.end());
+      r.lowest_foot_m = lows[lows.size() / 2];
+      char line[160];
+      if (r.standing_height_m < 1.4f || r.standing_height_m > 2.2f) {
+        std::snprintf(line, sizeof line, "the body is %.2f m tall, outside human size (1.4-2.2 m): check --bvh-units / --bvh-scale",
+                      r.standing_height_m);
+        r.warnings.emplace_back(line);
+      }
+      if (r.lowest_foot_m > 0.15f || r.lowest_foot_m < -0.05f) {
+        std::snprintf(line, sizeof line, "the feet %s %.0f cm %s the floor (median lowest foot point): check --bvh-root",
+                      r.lowest_foot_m > 0 ? "float" : "sink", std::fabs(r.lowest_foot_m) * 100.0f,
+                      r.lowest_foot_m > 0 ? "above" : "under");
+        r.warnings.emplace_back(line);
+      }
+      r.source_joints = m.names;
+      r.canonical_joint.assign(static_cast<size_t>(m.num_joints()), -1);
+      const HumanoidMap canon = canonical_humanoid_map();
+      auto mark = [&](int source, int target) {
+        if (source >= 0) r.canonical_joint[static_cast<size_t>(source)] = target;
+      };
+      mark(roles.pelvis, kCanonHips), mark(roles.chest, kCanonChest), mark(roles.neck, kCanonNeck);
+      mark(roles.head, kCanonHead), mark(roles.head_top, kCanonHeadTop);
+      for (int side = 0; side < 2; ++side) {
+        mark(roles.clavicle[side], canon.clavicle[side]), mark(roles.upper_arm[side], canon.upper_arm[side]);
+        mark(roles.forearm[side], canon.forearm[side]), mark(roles.hand[side], canon.hand[side]);
+        mark(roles.hand_end[side], canon.hand_end[side]), mark(roles.thigh[side], canon.thigh[side]);
+        mark(roles.shin[side], canon.shin[side]), mark(roles.foot[side], canon.foot[side]);
+        mark(roles.toe[side], canon.toe[side]), mark(roles.toe_end[side], canon.toe_end[side]);
+      }
+      // Inner spine joints have no canonical twin (the canonical spine is resampled along them).
+    } else if (options.canonical) {
+      return error = prefix + r.not_humanoid, false;
+    }
 
-    clip = Clip{};
-    clip.name = std::string(name);
-    clip.fps = r.fps;
-    clip.num_frames = m.frames;
-    clip.num_joints = n;
-    clip.local_pos_m = std::move(m.pos);
-    clip.local_rot = std::move(m.rot);
+    Clip out;
+    out.name = std::string(name);
+    out.fps = r.fps;
+    out.num_frames = m.frames;
+    out.num_joints = m.num_joints();
+    out.local_pos_m = std::move(m.pos);
+    out.local_rot = std::move(m.rot);
+    Skeleton source = skeleton_of(m);
+    if (options.canonical) {
+      const std::vector<vec3> sample = [&] {
+        std::vector<vec3> all;
+        fk_clip_positions(source, out, all);
+        return all;
+      }();
+      // The tallest frame reads the limbs straightest: the bone lengths are measured there.
+      int tallest = 0;
+      float best = -1.0f;
+      const int n = source.num_joints();
+      for (int f = 0; f < out.num_frames; ++f) {
+        const std::span<const vec3> frame(sample.data() + static_cast<size_t>(f) * n, static_cast<size_t>(n));
+        const float h = humanoid_head_height(source, roles, frame);
+        if (h > best) best = h, tallest = f;
+      }
+      skeleton = canonical_skeleton_from_capture(
+          roles, std::span<const vec3>(sample.data() + static_cast<size_t>(tallest) * n, static_cast<size_t>(n)));
+      Clip retargeted;
+      retarget_to_canonical(source, out, roles, skeleton, 1.0f, retargeted);
+      clip = std::move(retargeted);
+    } else {
+      skeleton = std::move(source);
+      clip = std::move(out);
+    }
     if (report) *report = r;
     return true;
   } catch (const std::exception& e) {  // bad_alloc only

@@ -1,5 +1,7 @@
 #include "library/library_source.hpp"
 
+#include "anim/humanoid_retarget.hpp"
+
 #include <algorithm>
 
 namespace foresight {
@@ -14,15 +16,11 @@ uint32_t tags_from_speed(const MotionLibrary& lib, int clip) {
   return kTagLocomotion | (speed > 2.2f ? kTagRun : 0u);
 }
 
-bool same_topology(const Skeleton& a, const Skeleton& b) {
-  return a.joint_names == b.joint_names && a.parents == b.parents;
-}
-
 }  // namespace
 
-bool motion_library_from_folder(const std::filesystem::path& dir, const BvhImportOptions& import,
-                                const AutoGraphOptions& graph, MotionLibrary& out,
-                                AutoGraphReport* report, std::string& error) {
+bool motion_library_from_folder(const MotionSource& source, MotionLibrary& out,
+                                LibraryImportReport* report, std::string& error) {
+  const std::filesystem::path& dir = source.motions_dir;
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
     return error = dir.string() + ": not a folder of BVH files", false;
@@ -36,27 +34,45 @@ bool motion_library_from_folder(const std::filesystem::path& dir, const BvhImpor
   if (files.empty()) return error = dir.string() + ": no .bvh files", false;
   std::sort(files.begin(), files.end());
 
+  LibraryImportReport rep;
   MotionLibrary lib;
   lib.name = dir.filename().string();
+  BvhImportOptions import = source.import;
+  import.canonical = true;
+  float library_leg_m = 0.0f;
   for (const auto& file : files) {
+    ClipImport& c = rep.files.emplace_back();
+    c.file = file.filename().string();
     Skeleton skeleton;
     Clip clip;
-    if (!clip_load_bvh(file, import, skeleton, clip, nullptr, error)) return false;
+    BvhImportOptions options = import;
+    if (!lib.clips.empty()) options.target_fps = lib.clips[0].fps;  // every clip at the library's rate
+    if (!clip_load_bvh(file, options, skeleton, clip, &c.import, c.reason)) {
+      if (source.strict) return error = c.reason + " (--strict)", false;
+      continue;
+    }
     if (lib.clips.empty()) {
       lib.skeleton = std::move(skeleton);
-    } else if (!same_topology(lib.skeleton, skeleton)) {
-      return error = file.string() + ": skeleton differs from " + files[0].filename().string() +
-                     " (joint names or hierarchy)",
-             false;
-    } else if (clip.fps != lib.clips[0].fps) {
-      return error = file.string() + ": " + std::to_string(clip.fps) + " fps after import, " +
-                     files[0].filename().string() + " has " + std::to_string(lib.clips[0].fps),
-             false;
+      library_leg_m = canonical_leg_length(lib.skeleton);
+    } else if (skeleton.rest_offsets_m != lib.skeleton.rest_offsets_m) {
+      // Another body: onto the library's, striding in proportion to the legs.
+      c.root_scale = library_leg_m / canonical_leg_length(skeleton);
+      Clip onto;
+      retarget_to_canonical(skeleton, clip, canonical_humanoid_map(), lib.skeleton, c.root_scale, onto);
+      clip = std::move(onto);
     }
+    c.kept = true;
     lib.clips.push_back(std::move(clip));
   }
-  if (!graph_build_automatic(lib.skeleton, lib.clips, graph, lib.graph, report, error))
+  if (report) *report = rep;
+  if (lib.clips.empty()) {
+    error = dir.string() + ": no usable humanoid clip";
+    for (const ClipImport& c : rep.files) error += "\n  " + c.reason;
+    return false;
+  }
+  if (!graph_build_automatic(lib.skeleton, lib.clips, source.graph, lib.graph, &rep.graph, error))
     return error = dir.string() + ": " + error, false;
+  if (report) *report = rep;
   lib.clip_tags.assign(lib.clips.size(), kTagLocomotion);
   if (!motion_library_compile(lib, error)) return false;
   // Tag from the compiled root tracks, then recompile so segments and hash carry the tags.
@@ -72,8 +88,7 @@ bool motion_library_load(const MotionSource& source, MotionLibrary& out, std::st
     out = motion_library_default();
     return true;
   }
-  return motion_library_from_folder(source.motions_dir, source.import, source.graph, out, nullptr,
-                                    error);
+  return motion_library_from_folder(source, out, nullptr, error);
 }
 
 }  // namespace foresight

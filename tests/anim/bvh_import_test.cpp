@@ -2,6 +2,7 @@
 // order, position-channel semantics, End Sites, root folding, unit and up-axis detection,
 // resampling and the clip -> BVH -> clip round trip.
 #include "anim/bvh_import.hpp"
+#include "anim/canonical_skeleton.hpp"
 #include "bvh_test_util.hpp"
 #include "support/test_paths.hpp"
 
@@ -201,11 +202,17 @@ TEST(BvhImport, DoesNotFoldARotatingRootOrOneWithTwoChildren) {
   EXPECT_EQ(im.skeleton.num_joints(), 3);
 }
 
-TEST(BvhImport, DetectsMetresInchesAndCentimetresFromOnePose) {
+TEST(BvhImport, ScalesAHumanoidToTheCanonicalHeightWhateverItsUnit) {
+  // The 1.6 m test humanoid, written in metres, centimetres and inches with no unit given: the
+  // same body, its standing height scaled to the canonical skeleton's, the unit recognised.
   const Imported metres = import_doc(test::humanoid_document(1.0f, false), {});
+  EXPECT_TRUE(metres.report.humanoid) << metres.report.not_humanoid;
+  EXPECT_TRUE(metres.report.height_normalised);
   EXPECT_EQ(metres.report.unit, LengthUnit::kMetres);
-  EXPECT_NEAR(metres.report.body_size, 1.6f, 0.05f);
-  EXPECT_NEAR(metres.at(0, 0).y, 0.9f, kEps);
+  // Its legs are 0.82 m hip to ankle: 1.68 m tall by the canonical proportions.
+  EXPECT_NEAR(metres.report.body_size, 0.82f * kCanonicalStandingHeightM / kCanonicalLegLengthM, 1e-4f);
+  EXPECT_NEAR(metres.report.standing_height_m, kCanonicalStandingHeightM, 1e-4f);
+  EXPECT_NEAR(metres.at(0, 0).y, 0.9f * metres.report.scale, kEps);
   const struct {
     LengthUnit unit;
     float scale;
@@ -217,17 +224,30 @@ TEST(BvhImport, DetectsMetresInchesAndCentimetresFromOnePose) {
     EXPECT_EQ(im.report.up, UpAxis::kYUp);
     expect_near_positions(im.positions, metres.positions, 1e-5f);
   }
-  // An explicit unit wins over detection.
+  // An explicit unit keeps the true size.
   BvhImportOptions cm;
   cm.unit = LengthUnit::kCentimetres;
   const Imported forced = import_doc(test::humanoid_document(1.0f, false), cm);
   EXPECT_EQ(forced.report.unit, LengthUnit::kCentimetres);
+  EXPECT_FALSE(forced.report.height_normalised);
   EXPECT_NEAR(forced.at(0, 0).y, 0.009f, kEps);
+  EXPECT_FALSE(forced.report.warnings.empty()) << "a 1.6 cm body must be warned about";
+  // Not a humanoid (a two-joint prop): the bounding box picks one of three units.
+  BvhDocument prop;
+  prop.joints.push_back({"Box", -1, vec3(0), {BvhChannel::kXposition, BvhChannel::kYposition, BvhChannel::kZposition}, false});
+  prop.joints.push_back({"Box_End", 0, vec3(0, 50, 0), {}, true});
+  prop.num_frames = 1;
+  prop.values = {0, 0, 0};
+  const Imported box = import_doc(prop, {});
+  EXPECT_FALSE(box.report.humanoid);
+  EXPECT_EQ(box.report.unit, LengthUnit::kInches);
 }
 
 TEST(BvhImport, DetectsZUpAndRotatesItToYUpWithoutMirroring) {
-  const Imported y_up = import_doc(test::humanoid_document(100.0f, false), {});
-  const Imported z_up = import_doc(test::humanoid_document(100.0f, true), {});
+  BvhImportOptions cm;
+  cm.unit = LengthUnit::kCentimetres;
+  const Imported y_up = import_doc(test::humanoid_document(100.0f, false), cm);
+  const Imported z_up = import_doc(test::humanoid_document(100.0f, true), cm);
   EXPECT_EQ(y_up.report.up, UpAxis::kYUp);
   EXPECT_EQ(z_up.report.up, UpAxis::kZUp);
   EXPECT_EQ(z_up.report.unit, LengthUnit::kCentimetres);
@@ -239,7 +259,7 @@ TEST(BvhImport, DetectsZUpAndRotatesItToYUpWithoutMirroring) {
   expect_vec(z_up.skeleton.rest_offsets_m[1], {0, 0.1f, 0});
 
   // Forcing Y up on the Z-up file leaves it lying down: the head ends up along +Z.
-  BvhImportOptions wrong;
+  BvhImportOptions wrong = cm;
   wrong.up = UpAxis::kYUp;
   const Imported lying = import_doc(test::humanoid_document(100.0f, true), wrong);
   EXPECT_GT(lying.at(0, lying.skeleton.find_joint("Head")).z, 0.5f);

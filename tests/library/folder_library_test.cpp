@@ -1,9 +1,12 @@
 #include "library/library_source.hpp"
+#include "anim/canonical_skeleton.hpp"
 #include "library_checks.hpp"
+#include "support/bvh_variants.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 namespace foresight {
@@ -12,13 +15,13 @@ namespace {
 TEST(FolderLibrary, RealLocomotionCaptureGivesAStronglyConnectedGraph) {
   FORESIGHT_REQUIRE_MOCAP();
   MotionLibrary lib;
-  AutoGraphReport report;
+  LibraryImportReport imported;
   std::string error;
-  AutoGraphOptions options;
-  options.candidate_stride = 3;  // keeps the sanitizer build fast; the bench uses the default
-  ASSERT_TRUE(motion_library_from_folder(test::mocap_dir() / "locomotion", BvhImportOptions{},
-                                         options, lib, &report, error))
-      << error;
+  MotionSource source;
+  source.motions_dir = test::mocap_dir() / "locomotion";
+  source.graph.candidate_stride = 3;  // keeps the sanitizer build fast; the bench uses the default
+  ASSERT_TRUE(motion_library_from_folder(source, lib, &imported, error)) << error;
+  const AutoGraphReport& report = imported.graph;
   std::printf("[          ] locomotion: %zu clips, %lld frame pairs, %d minima, %d transitions; "
               "graph %d segments / %d edges before pruning, %d / %d after\n",
               lib.clips.size(), report.frame_pairs_compared, report.local_minima,
@@ -36,23 +39,97 @@ TEST(FolderLibrary, RealLocomotionCaptureGivesAStronglyConnectedGraph) {
   test::expect_continuous_edges(lib, 3.0f, 0.03f);
 }
 
-TEST(FolderLibrary, MissingFolderAndForeignSkeletonAreReported) {
+MotionSource folder(const std::filesystem::path& dir) {
+  MotionSource source;
+  source.motions_dir = dir;
+  source.graph.candidate_stride = 3;
+  return source;
+}
+
+TEST(FolderLibrary, AFileThatIsNoHumanoidIsSkippedWithItsReasonOrRefusedWhenStrict) {
   MotionLibrary lib;
   std::string error;
-  EXPECT_FALSE(motion_library_from_folder("/nonexistent/motions", {}, {}, lib, nullptr, error));
+  EXPECT_FALSE(motion_library_from_folder(folder("/nonexistent/motions"), lib, nullptr, error));
   EXPECT_NE(error.find("/nonexistent/motions"), std::string::npos) << error;
 
   FORESIGHT_REQUIRE_MOCAP();
   const auto dir = test::scratch_dir();
-  // A link, not a copy: the capture files stay where their licence allows them.
-  std::filesystem::create_symlink(
-      test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", dir / "a.bvh");
-  std::ofstream(dir / "b.bvh") << "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Xposition "
-                                  "Yposition Zposition\n End Site\n {\n  OFFSET 0 10 0\n }\n}\n"
-                                  "MOTION\nFrames: 2\nFrame Time: 0.0333333\n0 90 0\n0 90 1\n";
-  EXPECT_FALSE(motion_library_from_folder(dir, {}, {}, lib, nullptr, error));
-  EXPECT_NE(error.find("b.bvh"), std::string::npos) << error;
-  EXPECT_NE(error.find("skeleton differs"), std::string::npos) << error;
+  // Links, not copies: the capture files stay where their licence allows them.
+  for (const char* take : {"bandai_dataset-2_walk_normal_001.bvh", "bandai_dataset-2_walk-turn-left_normal_001.bvh"})
+    std::filesystem::create_symlink(test::mocap_dir() / "locomotion" / take, dir / take);
+  std::ofstream(dir / "prop.bvh") << "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Xposition "
+                                     "Yposition Zposition\n End Site\n {\n  OFFSET 0 10 0\n }\n}\n"
+                                     "MOTION\nFrames: 2\nFrame Time: 0.0333333\n0 90 0\n0 90 1\n";
+  std::ofstream(dir / "truncated.bvh") << "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n";
+  LibraryImportReport report;
+  ASSERT_TRUE(motion_library_from_folder(folder(dir), lib, &report, error)) << error;
+  EXPECT_EQ(lib.clips.size(), 2u);
+  ASSERT_EQ(report.files.size(), 4u);
+  for (const ClipImport& c : report.files) {
+    const bool bad = c.file == "prop.bvh" || c.file == "truncated.bvh";
+    EXPECT_EQ(c.kept, !bad) << c.file;
+    if (bad) {
+      EXPECT_NE(c.reason.find(c.file.substr(0, c.file.size() - 4)), std::string::npos) << c.reason;
+    }
+  }
+  const auto prop = std::find_if(report.files.begin(), report.files.end(), [](const ClipImport& c) { return c.file == "prop.bvh"; });
+  ASSERT_NE(prop, report.files.end());
+  EXPECT_NE(prop->reason.find("not a humanoid"), std::string::npos) << prop->reason;
+
+  MotionSource strict = folder(dir);
+  strict.strict = true;
+  EXPECT_FALSE(motion_library_from_folder(strict, lib, nullptr, error));
+  EXPECT_NE(error.find("--strict"), std::string::npos) << error;
+}
+
+// One folder, one take written five ways (another unit, other names, an extra dummy root, other
+// Euler orders, 60 fps, fingers and twist bones) plus another actor's takes: every file is kept,
+// every clip plays on one body, and the automatic graph joins the variants.
+TEST(FolderLibrary, CapturesOfDifferentSkeletonsMixInOneFolder) {
+  FORESIGHT_REQUIRE_MOCAP();
+  const auto dir = test::scratch_dir();
+  BvhDocument take;
+  std::string error;
+  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-2_walk_normal_002.bvh", take, error)) << error;
+  std::filesystem::create_symlink(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh",
+                                  dir / "other_actor.bvh");
+  BvhDocument inches = take;
+  test::scale_document(inches, 1.0f / 2.54f);
+  BvhDocument renamed = take;
+  for (BvhJoint& j : renamed.joints) j.name = "mixamorig:" + j.name;
+  test::insert_parent(renamed, 0, "Reference", 0.0f);
+  BvhDocument reordered = take;
+  test::reorder_rotations(reordered, "XYZ");
+  test::upsample(reordered, 2);
+  BvhDocument fingers = take;
+  test::add_fingers(fingers, "Hand_L", 1.0f);
+  test::add_fingers(fingers, "Hand_R", -1.0f);
+  test::insert_parent(fingers, test::joint_named(fingers, "LowerArm_L"), "UpperArmTwist_L", 0.5f);
+  const std::pair<const char*, const BvhDocument*> files[] = {
+      {"a_centimetres.bvh", &take}, {"b_inches.bvh", &inches}, {"c_renamed.bvh", &renamed},
+      {"d_xyz_60fps.bvh", &reordered}, {"e_fingers.bvh", &fingers}};
+  for (const auto& [name, doc] : files) ASSERT_TRUE(bvh_save(dir / name, *doc, error)) << error;
+
+  MotionLibrary lib;
+  LibraryImportReport report;
+  ASSERT_TRUE(motion_library_from_folder(folder(dir), lib, &report, error)) << error;
+  ASSERT_EQ(lib.clips.size(), 6u);
+  for (const ClipImport& c : report.files) {
+    EXPECT_TRUE(c.kept) << c.file << ": " << c.reason;
+    EXPECT_NEAR(c.import.standing_height_m, kCanonicalStandingHeightM, 0.01f) << c.file;
+    EXPECT_LT(std::fabs(c.import.lowest_foot_m), 0.1f) << c.file;
+  }
+  EXPECT_EQ(lib.skeleton.num_joints(), kCanonJointCount);
+  for (const Clip& c : lib.clips) EXPECT_FLOAT_EQ(c.fps, 30.0f) << c.name;
+  // The variants of one take are one motion: the graph joins them (cross-clip transitions), and
+  // every clip has a place in it.
+  int cross = 0;
+  for (const Transition& t : lib.graph.transitions)
+    cross += lib.graph.segments[t.from].clip != lib.graph.segments[t.to].clip;
+  EXPECT_GT(cross, 5);
+  std::vector<bool> has_segment(lib.clips.size(), false);
+  for (const Segment& s : lib.graph.segments) has_segment[static_cast<size_t>(s.clip)] = true;
+  for (size_t c = 0; c < lib.clips.size(); ++c) EXPECT_TRUE(has_segment[c]) << lib.clips[c].name;
 }
 
 }  // namespace

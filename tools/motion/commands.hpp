@@ -23,7 +23,7 @@ struct SteerOptions {
   double max_seconds = 300;
 };
 
-int command_info(const MotionSource& source, bool brief);
+int command_info(const MotionSource& source, bool brief, bool json);
 int command_graph(const MotionSource& source);
 int command_export_bvh(const MotionSource& source, const std::string& out_dir);
 int command_play(const MotionSource& source, const PlayOptions& options);

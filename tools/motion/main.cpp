@@ -1,5 +1,5 @@
 // foresight-motion: inspect, export and play motion libraries.
-//   foresight-motion info  [--motions DIR]
+//   foresight-motion info  [--motions DIR] [--json] [--bvh-units U | --bvh-scale S] [--bvh-root R]
 //   foresight-motion graph  --motions DIR [--threshold M]
 //   foresight-motion export-bvh OUT_DIR [--motions DIR]
 //   foresight-motion play [--scene maze] [--seconds 30] [--seed 1] [--motions DIR]
@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   auto* info = app.add_subcommand("info", "Clips, segments, transitions and content hash");
   bool brief = false;
   info->add_flag("--brief", brief, "Only the one-line summary");
+  bool info_json = false;
+  info->add_flag("--json", info_json, "One JSON line: per clip what the import decided, and the library");
   auto* graph = app.add_subcommand("graph", "Build the automatic graph and report nodes/edges");
   std::string out_dir;
   auto* export_bvh = app.add_subcommand("export-bvh", "Write every clip as a BVH file");
@@ -49,7 +51,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 36000.0));
 
   CLI11_PARSE(app, argc, argv);
-  if (*info) return tools::command_info(source, brief);
+  if (*info) return tools::command_info(source, brief, info_json);
   if (*graph) return tools::command_graph(source);
   if (*export_bvh) return tools::command_export_bvh(source, out_dir);
   if (*steer) return tools::command_steer(source, steer_options);
