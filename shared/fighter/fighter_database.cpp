@@ -216,7 +216,18 @@ bool fighter_database_add_folder(FighterDatabase& db, const std::filesystem::pat
     FighterTake take;
     take.name = file.stem().string();
     take.source = file.string();
-    if (!clip_load_bvh(file, {}, take.skeleton, take.clip, nullptr, error)) return false;
+    // On the canonical skeleton, so a capture of any naming or hierarchy gives the rig its joints;
+    // marks name the capture's joints and are carried over to their canonical twins.
+    BvhImportOptions import;
+    import.canonical = true;
+    BvhImportReport imported;
+    if (!clip_load_bvh(file, import, take.skeleton, take.clip, &imported, error)) return false;
+    for (StrikeMark& m : marks.strikes) {
+      if (take.skeleton.find_joint(m.hit_joint) >= 0) continue;
+      const auto it = std::find(imported.source_joints.begin(), imported.source_joints.end(), m.hit_joint);
+      const int canonical = it == imported.source_joints.end() ? -1 : imported.canonical_joint[static_cast<std::size_t>(it - imported.source_joints.begin())];
+      if (canonical >= 0) m.hit_joint = take.skeleton.joint_names[static_cast<std::size_t>(canonical)];
+    }
     std::string rig_error;
     if (!fighter_rig_from_skeleton(take.skeleton, take.rig, rig_error)) {
       error = file.string() + ": " + rig_error;

@@ -196,10 +196,11 @@ bool graph_build_automatic(const Skeleton& skeleton, std::span<const Clip> clips
   rep.segments_before_prune = g.num_segments();
   rep.edges_before_prune = static_cast<int>(g.transitions.size());
 
-  out = graph_keep_segments(g, largest_strongly_connected_component(g));
+  out = o.prune_to_largest_component ? graph_keep_segments(g, largest_strongly_connected_component(g)) : g;
   rep.segments = out.num_segments();
   rep.edges = static_cast<int>(out.transitions.size());
   if (report) *report = rep;
+  if (!o.prune_to_largest_component) return true;
   if (rep.segments < 2 || rep.edges < 2)
     return error = "automatic graph: largest strongly connected component has " +
                    std::to_string(rep.segments) + " segments; raise threshold_rms_m (now " +

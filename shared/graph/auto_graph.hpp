@@ -25,6 +25,8 @@ struct AutoGraphOptions {
   /// Joints in the point cloud: a joint is used if its name contains one of these (case-sensitive);
   /// empty = every joint that is not an End Site.
   std::vector<std::string> joint_filter;
+  /// Step 4. Off: every segment stays (a caller that adds its own transitions prunes after).
+  bool prune_to_largest_component = true;
 };
 
 struct AutoGraphReport {

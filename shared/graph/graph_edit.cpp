@@ -1,6 +1,7 @@
 #include "graph/graph_edit.hpp"
 
 #include <algorithm>
+#include <string>
 
 namespace foresight {
 
@@ -67,6 +68,32 @@ MotionGraph graph_keep_segments(const MotionGraph& graph, const std::vector<int>
   for (const Transition& t : graph.transitions)
     if (new_index[t.from] >= 0 && new_index[t.to] >= 0)
       out.transitions.push_back({new_index[t.from], new_index[t.to], t.blend_frames});
+  out.finalize();
+  return out;
+}
+
+MotionGraph graph_split_long_segments(const MotionGraph& graph, int max_frames) {
+  MotionGraph out;
+  std::vector<int> first_piece(graph.segments.size()), last_piece(graph.segments.size());
+  for (size_t s = 0; s < graph.segments.size(); ++s) {
+    const Segment& seg = graph.segments[s];
+    const int pieces = max_frames > 0 ? std::max(1, (seg.num_frames() + max_frames - 1) / max_frames) : 1;
+    first_piece[s] = out.num_segments();
+    for (int k = 0; k < pieces; ++k) {
+      Segment piece = seg;
+      piece.first_frame = seg.first_frame + seg.num_frames() * k / pieces;
+      piece.end_frame = seg.first_frame + seg.num_frames() * (k + 1) / pieces;
+      if (k > 0) {
+        const size_t at = seg.name.rfind('@');
+        piece.name = (at == std::string::npos ? seg.name : seg.name.substr(0, at)) + "@" + std::to_string(piece.first_frame);
+        out.transitions.push_back({out.num_segments() - 1, out.num_segments(), 0});
+      }
+      out.segments.push_back(piece);
+    }
+    last_piece[s] = out.num_segments() - 1;
+  }
+  for (const Transition& t : graph.transitions)
+    out.transitions.push_back({last_piece[static_cast<size_t>(t.from)], first_piece[static_cast<size_t>(t.to)], t.blend_frames});
   out.finalize();
   return out;
 }

@@ -1,8 +1,10 @@
 #include "library/library_source.hpp"
 
 #include "anim/humanoid_retarget.hpp"
+#include "graph/graph_edit.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace foresight {
 namespace {
@@ -70,14 +72,36 @@ bool motion_library_from_folder(const MotionSource& source, MotionLibrary& out,
     for (const ClipImport& c : rep.files) error += "\n  " + c.reason;
     return false;
   }
-  if (!graph_build_automatic(lib.skeleton, lib.clips, source.graph, lib.graph, &rep.graph, error))
+  AutoGraphOptions graph_options = source.graph;
+  graph_options.prune_to_largest_component = false;
+  MotionGraph graph;
+  if (!graph_build_automatic(lib.skeleton, lib.clips, graph_options, graph, &rep.graph, error))
     return error = dir.string() + ": " + error, false;
+  // Half a second at most between decisions, as in the built-in library's half-gait steps.
+  graph = graph_split_long_segments(graph, static_cast<int>(std::lround(0.5f * lib.clips[0].fps)));
+  const size_t captured = lib.clips.size();
+  lib.clip_tags.assign(captured, kTagLocomotion);
+  derive_steering_motion(lib.skeleton, lib.clips, lib.clip_tags, graph, rep.derived);
+  // Only now prune to the largest strongly connected component: the derived stops and starts
+  // join clips the automatic transitions alone would leave out.
+  rep.clips.resize(lib.clips.size());
+  for (size_t c = 0; c < lib.clips.size(); ++c) rep.clips[c] = {lib.clips[c].name, c >= captured, 0, 0, {}};
+  for (const Segment& s : graph.segments) ++rep.clips[static_cast<size_t>(s.clip)].segments;
+  lib.graph = graph_keep_segments(graph, largest_strongly_connected_component(graph));
+  for (const Segment& s : lib.graph.segments) ++rep.clips[static_cast<size_t>(s.clip)].segments_kept;
+  for (ClipInGraph& c : rep.clips)
+    if (c.segments_kept == 0)
+      c.dropped_why = c.segments == 0 ? "shorter than a transition window" : "no way into it and back out (no transition within the threshold, no stop or start)";
+  rep.graph.segments = lib.graph.num_segments();
+  rep.graph.edges = static_cast<int>(lib.graph.transitions.size());
   if (report) *report = rep;
-  lib.clip_tags.assign(lib.clips.size(), kTagLocomotion);
+  if (rep.graph.segments < 2)
+    return error = dir.string() + ": the motion graph's largest strongly connected component has " +
+                   std::to_string(rep.graph.segments) + " segments; raise --threshold", false;
   if (!motion_library_compile(lib, error)) return false;
-  // Tag from the compiled root tracks, then recompile so segments and hash carry the tags.
-  for (size_t c = 0; c < lib.clips.size(); ++c) lib.clip_tags[c] = tags_from_speed(lib, static_cast<int>(c));
-  for (Segment& s : lib.graph.segments) s.tags = lib.clip_tags[s.clip];
+  // Tag captured clips from the compiled root tracks, then recompile so segments and hash carry them.
+  for (size_t c = 0; c < captured; ++c) lib.clip_tags[c] = tags_from_speed(lib, static_cast<int>(c));
+  for (Segment& s : lib.graph.segments) s.tags = lib.clip_tags[static_cast<size_t>(s.clip)];
   if (!motion_library_compile(lib, error)) return false;
   out = std::move(lib);
   return true;

@@ -3,6 +3,7 @@
 // or a folder of BVH clips with an automatically built graph (`--motions DIR` on every binary).
 #include "anim/bvh_import.hpp"
 #include "graph/auto_graph.hpp"
+#include "library/derived_motion.hpp"
 #include "library/motion_library.hpp"
 
 #include <filesystem>
@@ -25,9 +26,20 @@ struct ClipImport {
   float root_scale = 1.0f; ///< Stride scale onto the library's body (another actor's proportions).
 };
 
+/// What the graph kept of one clip.
+struct ClipInGraph {
+  std::string clip;
+  bool derived = false;       ///< Made by derive_steering_motion, not captured.
+  int segments = 0;           ///< Cut into, before pruning.
+  int segments_kept = 0;      ///< In the graph's largest strongly connected component.
+  std::string dropped_why;    ///< When none was kept.
+};
+
 struct LibraryImportReport {
   std::vector<ClipImport> files;  ///< Sorted by name, every .bvh of the folder.
   AutoGraphReport graph;
+  DerivedMotionReport derived;
+  std::vector<ClipInGraph> clips;  ///< Per library clip, captured then derived.
 };
 
 /// The built-in default library: authored clips, the manifest's declared graph, compiled.

@@ -1,6 +1,7 @@
 // info, graph and export-bvh: read-only views of a library.
 #include "anim/bvh.hpp"
 #include "commands.hpp"
+#include "library/steerability.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -135,9 +136,35 @@ int command_graph(const MotionSource& source) {
               "%d transitions accepted\n",
               lib.clips.size(), r.frame_pairs_compared, r.local_minima, source.graph.threshold_rms_m,
               r.transitions_accepted);
-  std::printf("before pruning: %d nodes, %d edges; largest strongly connected component: "
-              "%d nodes, %d edges\n",
+  std::printf("before pruning: %d nodes, %d edges; with derived motion, largest strongly connected "
+              "component: %d nodes, %d edges\n",
               r.segments_before_prune, r.edges_before_prune, r.segments, r.edges);
+  const DerivedMotionReport& d = report.derived;
+  std::printf("derived (the capture lacks them): standing pose from %s frame %d (pelvis %.2f m/s), "
+              "%d idle loop, %d turns on the spot, %d stops, %d starts\n",
+              d.standing_clip.c_str(), d.standing_frame, d.standing_speed_m_per_s, d.idles, d.turns, d.stops, d.starts);
+  for (const ClipInGraph& c : report.clips) {
+    if (c.derived) continue;
+    if (c.segments_kept > 0)
+      std::printf("  kept    %-48s %d of %d segments\n", c.clip.c_str(), c.segments_kept, c.segments);
+    else
+      std::printf("  DROPPED %-48s %s\n", c.clip.c_str(), c.dropped_why.c_str());
+  }
+  for (const ClipImport& f : report.files)
+    if (!f.kept) std::printf("  SKIPPED %-48s %s\n", f.file.c_str(), f.reason.c_str());
+  const struct {
+    const char* what;
+    int segment;
+  } starts[] = {{"standing", standing_segment(lib)}, {"walking", walking_segment(lib)}};
+  for (const auto& s : starts) {
+    const auto can = followable_directions(lib, s.segment);
+    std::string line;
+    for (int k = 0; k < kCommandSectors; ++k)
+      line += std::string(" ") + std::string(command_sector_name(k)) + (can[static_cast<size_t>(k)] ? " yes," : " NO,");
+    line.pop_back();
+    std::printf("from %s (%s):%s\n", s.what, s.segment >= 0 ? lib.graph.segments[static_cast<size_t>(s.segment)].name.c_str() : "none",
+                line.c_str());
+  }
   return 0;
 }
 

@@ -1,0 +1,262 @@
+#include "library/derived_motion.hpp"
+
+#include "anim/canonical_skeleton.hpp"
+#include "anim/fk.hpp"
+#include "anim/root_motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight {
+namespace {
+
+constexpr float kStopStartSeconds = 0.5f;  // a stop or a start eases over half a second
+constexpr float kIdleSeconds = 0.5f;       // the idle loop: short, so a stand costs little time
+constexpr float kMinWalkSpeed = 0.3f, kMaxWalkSpeed = 2.2f;  // m/s: what gets stops and starts
+constexpr int kMaxStarts = 12;
+
+float ease(float t) {
+  t = std::clamp(t, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+// A pose relative to the ground placement it stands on: joint 0 in the placement's frame (its
+// height as it is), the other joints parent-relative.
+struct RelativePose {
+  std::vector<vec3> pos;
+  std::vector<quat> rot;
+};
+
+struct ClipTrack {
+  std::vector<Placement> placements;
+};
+
+RelativePose relative_pose(const Clip& clip, int frame, const Placement& at) {
+  RelativePose r;
+  const auto p = clip.frame_pos(frame);
+  const auto q = clip.frame_rot(frame);
+  r.pos.assign(p.begin(), p.end());
+  r.rot.assign(q.begin(), q.end());
+  r.pos[0] = from_ground(rotate_ground(ground(p[0]) - at.pos_m, -at.heading_rad), p[0].y);
+  r.rot[0] = quat_from_heading(-at.heading_rad) * q[0];
+  return r;
+}
+
+RelativePose blend(const RelativePose& a, const RelativePose& b, float w) {
+  RelativePose r = a;
+  for (size_t j = 0; j < a.pos.size(); ++j) {
+    r.pos[j] = glm::mix(a.pos[j], b.pos[j], w);
+    const quat qb = glm::dot(a.rot[j], b.rot[j]) < 0.0f ? -b.rot[j] : b.rot[j];
+    r.rot[j] = glm::normalize(glm::slerp(a.rot[j], qb, w));
+  }
+  return r;
+}
+
+void place(const RelativePose& r, const Placement& at, Clip& clip, int frame) {
+  auto p = clip.frame_pos(frame);
+  auto q = clip.frame_rot(frame);
+  std::copy(r.pos.begin(), r.pos.end(), p.begin());
+  std::copy(r.rot.begin(), r.rot.end(), q.begin());
+  p[0] = at.apply(r.pos[0]);
+  q[0] = at.apply(r.rot[0]);
+}
+
+Clip new_clip(const Skeleton& skeleton, const std::string& name, float fps, int frames) {
+  Clip c;
+  c.name = name;
+  c.fps = fps;
+  c.resize(skeleton, frames);
+  return c;
+}
+
+// Ground velocity (m/s, clip space) and turn rate (rad/s) at `frame`, from its neighbours.
+void velocity_at(const ClipTrack& t, int frame, float fps, vec2& v, float& turn) {
+  const int n = static_cast<int>(t.placements.size());
+  const int a = std::max(frame - 1, 0), b = std::min(frame + 1, n - 1);
+  const float dt = static_cast<float>(b - a) / fps;
+  v = (t.placements[static_cast<size_t>(b)].pos_m - t.placements[static_cast<size_t>(a)].pos_m) / dt;
+  turn = (t.placements[static_cast<size_t>(b)].heading_rad - t.placements[static_cast<size_t>(a)].heading_rad) / dt;
+}
+
+}  // namespace
+
+void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, std::vector<uint32_t>& tags,
+                            MotionGraph& graph, DerivedMotionReport& report) {
+  report = DerivedMotionReport{};
+  if (clips.empty() || skeleton.num_joints() != kCanonJointCount) return;
+  const float fps = clips[0].fps;
+  const int captured = static_cast<int>(clips.size());
+  std::vector<ClipTrack> tracks(clips.size());
+  for (size_t c = 0; c < clips.size(); ++c)
+    extract_root_track(clips[c], find_forward_axis(skeleton, clips[c]), tracks[c].placements);
+
+  // The standing pose: the stillest frame (pelvis and both ankles) among the upright ones.
+  std::vector<float> pelvis_heights;
+  for (const Clip& c : clips)
+    for (int f = 0; f < c.num_frames; ++f) pelvis_heights.push_back(c.frame_pos(f)[0].y);
+  std::nth_element(pelvis_heights.begin(), pelvis_heights.begin() + pelvis_heights.size() / 2, pelvis_heights.end());
+  const float upright = 0.93f * pelvis_heights[pelvis_heights.size() / 2];
+  int best_clip = 0, best_frame = 0;
+  float best_score = 1e30f, best_speed = 0.0f;
+  std::vector<vec3> pos;
+  const int n = skeleton.num_joints();
+  for (int c = 0; c < captured; ++c) {
+    fk_clip_positions(skeleton, clips[static_cast<size_t>(c)], pos);
+    const int frames = clips[static_cast<size_t>(c)].num_frames;
+    for (int f = 1; f + 1 < frames; ++f) {
+      if (clips[static_cast<size_t>(c)].frame_pos(f)[0].y < upright) continue;
+      vec2 v;
+      float turn;
+      velocity_at(tracks[static_cast<size_t>(c)], f, fps, v, turn);
+      float ankles = 0.0f;
+      for (int j : {kCanonLeftFoot, kCanonRightFoot})
+        ankles += glm::length(pos[static_cast<size_t>(f + 1) * n + j] - pos[static_cast<size_t>(f - 1) * n + j]) * fps / 2.0f;
+      const float score = glm::length(v) + 0.5f * ankles;
+      if (score < best_score) best_score = score, best_clip = c, best_frame = f, best_speed = glm::length(v);
+    }
+  }
+  report.standing_clip = clips[static_cast<size_t>(best_clip)].name;
+  report.standing_frame = best_frame;
+  report.standing_speed_m_per_s = best_speed;
+  const RelativePose stand = relative_pose(clips[static_cast<size_t>(best_clip)], best_frame,
+                                           tracks[static_cast<size_t>(best_clip)].placements[static_cast<size_t>(best_frame)]);
+
+  std::vector<int> standing_ends;    // segments that end in the standing pose
+  std::vector<int> standing_starts;  // segments that begin in it
+  auto add_clip = [&](Clip clip, uint32_t tag) {
+    const int id = graph.num_segments();
+    const int frames = clip.num_frames;
+    graph.segments.push_back({clip.name, static_cast<int>(clips.size()), 0, frames - 1, tag});
+    clips.push_back(std::move(clip));
+    tags.push_back(tag);
+    return id;
+  };
+
+  // Idle loop and turns on the spot.
+  {
+    const int frames = static_cast<int>(std::lround(kIdleSeconds * fps)) + 1;
+    Clip idle = new_clip(skeleton, "derived_idle", fps, frames);
+    for (int k = 0; k < frames; ++k) place(stand, Placement{}, idle, k);
+    const int id = add_clip(std::move(idle), kTagIdle);
+    standing_ends.push_back(id), standing_starts.push_back(id);
+    ++report.idles;
+  }
+  for (int degrees_turned : {45, 90, 135}) {
+    for (int sign : {1, -1}) {
+      const float angle = radians(static_cast<float>(sign * degrees_turned));
+      const int frames = static_cast<int>(std::lround((0.35f + 0.45f * degrees_turned / 90.0f) * fps)) + 1;
+      Clip turn = new_clip(skeleton, std::string("derived_turn_") + (sign > 0 ? "left_" : "right_") +
+                                         std::to_string(degrees_turned), fps, frames);
+      for (int k = 0; k < frames; ++k)
+        place(stand, Placement{vec2(0.0f), angle * ease(static_cast<float>(k) / static_cast<float>(frames - 1))}, turn, k);
+      const int id = add_clip(std::move(turn), kTagIdle | kTagTurn);
+      standing_ends.push_back(id), standing_starts.push_back(id);
+      ++report.turns;
+    }
+  }
+
+  // Stops from the end of every walking segment; starts into walking segments.
+  const int ease_frames = std::max(2, static_cast<int>(std::lround(kStopStartSeconds * fps)));
+  const int captured_segments = graph.num_segments() - report.idles - report.turns;
+  std::vector<int> stops_of(static_cast<size_t>(captured), 0), starts_of(static_cast<size_t>(captured), 0);
+  auto add_stop = [&](int s) {
+    const Segment seg = graph.segments[static_cast<size_t>(s)];
+    const Clip& source = clips[static_cast<size_t>(seg.clip)];
+    const ClipTrack& track = tracks[static_cast<size_t>(seg.clip)];
+    vec2 v;
+    float turn;
+    velocity_at(track, seg.end_frame, fps, v, turn);
+    Clip stop = new_clip(skeleton, "derived_stop_" + seg.name, fps, ease_frames + 1);
+    Placement at = track.placements[static_cast<size_t>(seg.end_frame)];
+    float turned = 0.0f;
+    for (int k = 0; k <= ease_frames; ++k) {
+      if (k > 0) {
+        const float keep = 1.0f - ease((static_cast<float>(k) - 0.5f) / static_cast<float>(ease_frames));
+        at.pos_m += rotate_ground(v, turned) * keep / fps;
+        turned += turn * keep / fps;
+        at.heading_rad += turn * keep / fps;
+      }
+      const int f = std::min(seg.end_frame + k, source.num_frames - 1);
+      const RelativePose walk = relative_pose(source, f, track.placements[static_cast<size_t>(f)]);
+      place(blend(walk, stand, ease(static_cast<float>(k) / static_cast<float>(ease_frames))), at, stop, k);
+    }
+    ++stops_of[static_cast<size_t>(seg.clip)];
+    const int id = add_clip(std::move(stop), kTagLocomotion);
+    graph.transitions.push_back({s, id, 0});
+    standing_ends.push_back(id);
+    ++report.stops;
+  };
+  auto add_start = [&](int s) {
+    const Segment seg = graph.segments[static_cast<size_t>(s)];
+    const Clip& source = clips[static_cast<size_t>(seg.clip)];
+    const ClipTrack& track = tracks[static_cast<size_t>(seg.clip)];
+    vec2 v;
+    float turn;
+    velocity_at(track, seg.first_frame, fps, v, turn);
+    Clip start = new_clip(skeleton, "derived_start_" + seg.name, fps, ease_frames + 1);
+    Placement at = track.placements[static_cast<size_t>(seg.first_frame)];
+    float turned = 0.0f;
+    for (int k = ease_frames; k >= 0; --k) {
+      if (k < ease_frames) {
+        const float keep = ease((static_cast<float>(k) + 0.5f) / static_cast<float>(ease_frames));
+        turned -= turn * keep / fps;
+        at.heading_rad -= turn * keep / fps;
+        at.pos_m -= rotate_ground(v, turned) * keep / fps;
+      }
+      // Before the clip's first frame the walk's first pose stands in.
+      const int f = std::max(seg.first_frame - ease_frames + k, 0);
+      const RelativePose walk = relative_pose(source, f, track.placements[static_cast<size_t>(f)]);
+      place(blend(stand, walk, ease(static_cast<float>(k) / static_cast<float>(ease_frames))), at, start, k);
+    }
+    ++starts_of[static_cast<size_t>(seg.clip)];
+    const int id = add_clip(std::move(start), kTagLocomotion);
+    graph.transitions.push_back({id, s, 0});
+    standing_starts.push_back(id);
+    ++report.starts;
+  };
+  auto speed_at = [&](int clip, int frame) {
+    vec2 v;
+    float turn;
+    velocity_at(tracks[static_cast<size_t>(clip)], frame, fps, v, turn);
+    return std::pair<float, float>(glm::length(v), turn);
+  };
+  struct StartCandidate {
+    int segment;
+    float turn;
+  };
+  std::vector<StartCandidate> start_candidates;
+  for (int s = 0; s < captured_segments; ++s) {
+    const Segment seg = graph.segments[static_cast<size_t>(s)];
+    if (seg.clip < 0 || seg.clip >= captured) continue;
+    const float speed = speed_at(seg.clip, seg.end_frame).first;
+    if (speed >= kMinWalkSpeed && speed <= kMaxWalkSpeed) add_stop(s);
+    const auto [start_speed, turn] = speed_at(seg.clip, seg.first_frame);
+    if (seg.first_frame >= ease_frames && start_speed >= kMinWalkSpeed && start_speed <= kMaxWalkSpeed)
+      start_candidates.push_back({s, turn});
+  }
+  // Starts into walks of every curvature: candidates spread evenly by turn rate.
+  std::sort(start_candidates.begin(), start_candidates.end(),
+            [](const StartCandidate& a, const StartCandidate& b) { return a.turn < b.turn; });
+  const size_t starts = std::min<size_t>(start_candidates.size(), kMaxStarts);
+  for (size_t i = 0; i < starts; ++i)
+    add_start(start_candidates[starts > 1 ? i * (start_candidates.size() - 1) / (starts - 1) : 0].segment);
+  // A clip left without a stop or a start (a run, a backward walk, a standing take) would drop
+  // out of the graph: it gets one whatever its speed, into its first segment, out of its last.
+  for (int c = 0; c < captured; ++c) {
+    int first = -1, last = -1;
+    for (int s = 0; s < captured_segments; ++s)
+      if (graph.segments[static_cast<size_t>(s)].clip == c) {
+        if (first < 0) first = s;
+        last = s;
+      }
+    if (first < 0) continue;
+    if (starts_of[static_cast<size_t>(c)] == 0) add_start(first);
+    if (stops_of[static_cast<size_t>(c)] == 0) add_stop(last);
+  }
+  // Anything that ends standing may go on to anything that starts standing.
+  for (int from : standing_ends)
+    for (int to : standing_starts) graph.transitions.push_back({from, to, 0});
+  graph.finalize();
+}
+
+}  // namespace foresight

@@ -1,0 +1,39 @@
+#pragma once
+// What a captured library lacks for look-ahead steering, derived from its own frames.
+//
+// Capture sessions record walks, turns and runs, rarely a standing idle, turns on the spot or
+// stops; without them the feasible motion tree has nothing to do once a wall is near, and the
+// avatar freezes (issue 16: 3-8 m walked in 60 s). So, at library build time:
+//  * a standing pose: the capture's stillest upright frame (pelvis and both ankles slowest);
+//  * an idle loop: that pose held for a second (`derived_idle`);
+//  * turns on the spot, both ways, 45 / 90 / 135 degrees: the standing pose turned about the
+//    pelvis, eased in and out (the feet pivot with the body: nothing here plants them);
+//  * a stop from every walking segment's end: the walk plays on while its ground speed and turn
+//    rate ease to zero and the pose blends into the standing pose over half a second;
+//  * starts into walking segments: the reverse, from the standing pose into the walk's own
+//    frames, speed easing up to the walk's.
+// Each derived clip joins the graph with blend-free transitions (it starts or ends on the very
+// frame it joins), so every walking clip can be stopped and started, and the graph's largest
+// strongly connected component keeps clips the automatic transitions alone would lose.
+#include "anim/clip.hpp"
+#include "graph/motion_graph.hpp"
+
+#include <string>
+#include <vector>
+
+namespace foresight {
+
+struct DerivedMotionReport {
+  std::string standing_clip;      ///< Where the standing pose comes from.
+  int standing_frame = -1;
+  float standing_speed_m_per_s = 0.0f;  ///< Pelvis ground speed there (0: perfectly still).
+  int idles = 0, turns = 0, stops = 0, starts = 0;
+};
+
+/// Appends the derived clips to `clips` (and their tags to `tags`) and their segments and
+/// transitions to `graph` (finalised again). `graph` holds the captured clips' segments.
+void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips,
+                            std::vector<uint32_t>& tags, MotionGraph& graph,
+                            DerivedMotionReport& report);
+
+}  // namespace foresight
