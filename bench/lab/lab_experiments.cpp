@@ -28,9 +28,9 @@ std::vector<double> lab_intervals(const LabOptions& options) {
   return {1.0 / 60, 1.0 / 40, 1.0 / 30, 1.0 / 20, 1.0 / 15, 1.0 / 12, 1.0 / 10};
 }
 
-bool lab_load(const std::string& scene_name, LabScene& out, std::string& error) {
+bool lab_load(const std::string& scene_name, const MotionSource& motions, LabScene& out, std::string& error) {
   out.name = scene_name;
-  if (!motion_library_load({}, out.library, error)) return false;
+  if (!motion_library_load(motions, out.library, error)) return false;
   if (!scene_world_load(scene_name, out.scene, out.world, error)) return false;
   const std::filesystem::path dir = data_dir() / "recordings";
   std::string why;

@@ -3,6 +3,7 @@
 // recordings, plus the navigation comparison the paper left for future work. Functions return
 // plain structs; printing and files are lab_report / main's job (docs/LAB.md).
 #include "lab/lab_driver.hpp"
+#include "library/library_source.hpp"
 #include "library/motion_library.hpp"
 #include "lookahead/motion_tree.hpp"
 #include "lookahead/recording.hpp"
@@ -82,7 +83,8 @@ struct LabScene {
 };
 
 /// The default library, the scene and data/recordings/<scene>_{train,eval}.json.
-bool lab_load(const std::string& scene_name, LabScene& out, std::string& error);
+/// The scene, its recordings and the motion library (`motions`: the built-in default when empty).
+bool lab_load(const std::string& scene_name, const MotionSource& motions, LabScene& out, std::string& error);
 
 /// A replay configuration for one frame interval and per-frame budget.
 ReplayConfig lab_replay_config(const MotionTreeConfig& tree, double interval_s,

@@ -1,8 +1,10 @@
 // foresight-lab: the paper's Fig. 9 and Fig. 10 and the navigation comparison, replayed from the
 // shipped recordings (docs/LAB.md).
 //   foresight-lab --scene maze --out DIR [--json] [--quick] [--seeds 20] [--responsive-seeds 200]
+//                 [--motions DIR]   (a captured library instead of the built-in one)
 #include "lab/lab_experiments.hpp"
 #include "lab/lab_report.hpp"
+#include "library/motion_source_cli.hpp"
 #include "machine_info.hpp"
 
 #include <CLI/CLI.hpp>
@@ -36,12 +38,14 @@ int main(int argc, char** argv) {
   double frame_cost_ms = 1000.0 * options.frame_cost_s;
   app.add_option("--frame-cost-ms", frame_cost_ms, "Fixed cost of a frame (rendering), ms")
       ->check(CLI::Range(0.0, 1000.0));
+  foresight::MotionSource motions;
+  foresight::add_motion_source_options(app, motions);
   CLI11_PARSE(app, argc, argv);
   options.frame_cost_s = frame_cost_ms / 1000.0;
 
   LabScene lab;
   std::string error;
-  if (!lab_load(options.scene, lab, error)) {
+  if (!lab_load(options.scene, motions, lab, error)) {
     std::fprintf(stderr, "foresight-lab: %s\n", error.c_str());
     return 1;
   }

@@ -14,6 +14,10 @@ constexpr float kStopStartSeconds = 0.5f;  // a stop or a start eases over half 
 constexpr float kIdleSeconds = 0.5f;       // the idle loop: short, so a stand costs little time
 constexpr float kMinWalkSpeed = 0.3f, kMaxWalkSpeed = 2.2f;  // m/s: what gets stops and starts
 constexpr int kMaxStarts = 12;
+// A derived clip starts or ends on the very pose it joins, but its ground placement is read from
+// its own first frame, a few millimetres or a degree off the source clip's: a short blend takes
+// that up so every join is exactly continuous.
+constexpr int kJoinBlendFrames = 4;
 
 float ease(float t) {
   t = std::clamp(t, 0.0f, 1.0f);
@@ -182,7 +186,7 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
     }
     ++stops_of[static_cast<size_t>(seg.clip)];
     const int id = add_clip(std::move(stop), kTagLocomotion);
-    graph.transitions.push_back({s, id, 0});
+    graph.transitions.push_back({s, id, kJoinBlendFrames});
     standing_ends.push_back(id);
     ++report.stops;
   };
@@ -210,7 +214,7 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
     }
     ++starts_of[static_cast<size_t>(seg.clip)];
     const int id = add_clip(std::move(start), kTagLocomotion);
-    graph.transitions.push_back({id, s, 0});
+    graph.transitions.push_back({id, s, kJoinBlendFrames});
     standing_starts.push_back(id);
     ++report.starts;
   };
@@ -255,7 +259,7 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
   }
   // Anything that ends standing may go on to anything that starts standing.
   for (int from : standing_ends)
-    for (int to : standing_starts) graph.transitions.push_back({from, to, 0});
+    for (int to : standing_starts) graph.transitions.push_back({from, to, kJoinBlendFrames});
   graph.finalize();
 }
 

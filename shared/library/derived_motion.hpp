@@ -12,9 +12,10 @@
 //    rate ease to zero and the pose blends into the standing pose over half a second;
 //  * starts into walking segments: the reverse, from the standing pose into the walk's own
 //    frames, speed easing up to the walk's.
-// Each derived clip joins the graph with blend-free transitions (it starts or ends on the very
-// frame it joins), so every walking clip can be stopped and started, and the graph's largest
-// strongly connected component keeps clips the automatic transitions alone would lose.
+// Each derived clip joins the graph where its first or last pose is the pose it joins (a 4-frame
+// blend takes up the ground placement's rounding), so every walking clip can be stopped and
+// started, and the graph's largest strongly connected component keeps clips the automatic
+// transitions alone would lose.
 #include "anim/clip.hpp"
 #include "graph/motion_graph.hpp"
 

@@ -92,6 +92,19 @@ bool motion_library_from_folder(const MotionSource& source, MotionLibrary& out,
   for (ClipInGraph& c : rep.clips)
     if (c.segments_kept == 0)
       c.dropped_why = c.segments == 0 ? "shorter than a transition window" : "no way into it and back out (no transition within the threshold, no stop or start)";
+  // Derived clips of pieces the pruning dropped go too (captured clips stay: their files were read).
+  std::vector<int> new_index(lib.clips.size(), -1);
+  std::vector<Clip> kept_clips;
+  std::vector<uint32_t> kept_tags;
+  for (size_t c = 0; c < lib.clips.size(); ++c) {
+    if (c >= captured && rep.clips[c].segments_kept == 0) continue;
+    new_index[c] = static_cast<int>(kept_clips.size());
+    kept_clips.push_back(std::move(lib.clips[c]));
+    kept_tags.push_back(lib.clip_tags[c]);
+  }
+  lib.clips = std::move(kept_clips);
+  lib.clip_tags = std::move(kept_tags);
+  for (Segment& s : lib.graph.segments) s.clip = new_index[static_cast<size_t>(s.clip)];
   rep.graph.segments = lib.graph.num_segments();
   rep.graph.edges = static_cast<int>(lib.graph.transitions.size());
   if (report) *report = rep;

@@ -20,7 +20,7 @@ TEST(LabStatistics, LinearFitAndPercentiles) {
 TEST(Lab, QuickRunOnObstaclesReproducesItsSafetyFigures) {
   LabScene scene;
   std::string error;
-  ASSERT_TRUE(lab_load("obstacles", scene, error)) << error;
+  ASSERT_TRUE(lab_load("obstacles", {}, scene, error)) << error;
   LabOptions options;
   options.scene = "obstacles";
   options.quick = true;
