@@ -14,6 +14,8 @@ constexpr float kStopStartSeconds = 0.5f;  // a stop or a start eases over half 
 constexpr float kIdleSeconds = 0.5f;       // the idle loop: short, so a stand costs little time
 constexpr float kMinWalkSpeed = 0.3f, kMaxWalkSpeed = 2.2f;  // m/s: what gets stops and starts
 constexpr int kMaxStarts = 12;
+constexpr float kBendDegrees = 40.0f;   // per walking piece (about half a second): 80 deg/s
+constexpr float kMinBendSpeed = 0.5f;   // m/s: slower steps are turned on the spot instead
 // A derived clip starts or ends on the very pose it joins, but its ground placement is read from
 // its own first frame, a few millimetres or a degree off the source clip's: a short blend takes
 // that up so every join is exactly continuous.
@@ -94,7 +96,7 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
   for (size_t c = 0; c < clips.size(); ++c)
     extract_root_track(clips[c], find_forward_axis(skeleton, clips[c]), tracks[c].placements);
 
-  // The standing pose: the stillest frame (pelvis and both ankles) among the upright ones.
+  // The standing pose: the stillest, most compact frame among the upright ones.
   std::vector<float> pelvis_heights;
   for (const Clip& c : clips)
     for (int f = 0; f < c.num_frames; ++f) pelvis_heights.push_back(c.frame_pos(f)[0].y);
@@ -115,7 +117,12 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
       float ankles = 0.0f;
       for (int j : {kCanonLeftFoot, kCanonRightFoot})
         ankles += glm::length(pos[static_cast<size_t>(f + 1) * n + j] - pos[static_cast<size_t>(f - 1) * n + j]) * fps / 2.0f;
-      const float score = glm::length(v) + 0.5f * ankles;
+      // A compact pose too (arms down, feet together): the idle's body disc is what must fit
+      // wherever the avatar stops. Each 10 cm of reach counts like 0.1 m/s of motion.
+      const vec2 centre = ground(pos[static_cast<size_t>(f) * n]);
+      float reach = 0.0f;
+      for (int j = 0; j < n; ++j) reach = std::max(reach, glm::length(ground(pos[static_cast<size_t>(f) * n + j]) - centre));
+      const float score = glm::length(v) + 0.5f * ankles + reach;
       if (score < best_score) best_score = score, best_clip = c, best_frame = f, best_speed = glm::length(v);
     }
   }
@@ -260,6 +267,55 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
   // Anything that ends standing may go on to anything that starts standing.
   for (int from : standing_ends)
     for (int to : standing_starts) graph.transitions.push_back({from, to, kJoinBlendFrames});
+
+  // Walking turns sharper than the capture's: each walking piece bent both ways. Its ground path
+  // turns at a constant rate on top of the capture's own; the poses relative to the ground stay
+  // the capture's, so a bent piece joins wherever its original does.
+  std::vector<std::vector<int>> bends_of(static_cast<size_t>(graph.num_segments()));
+  for (int s = 0; s < captured_segments; ++s) {
+    const Segment seg = graph.segments[static_cast<size_t>(s)];
+    const ClipTrack& track = tracks[static_cast<size_t>(seg.clip)];
+    const float speed = glm::length(track.placements[static_cast<size_t>(seg.end_frame)].pos_m -
+                                    track.placements[static_cast<size_t>(seg.first_frame)].pos_m) /
+                        (static_cast<float>(seg.num_frames()) / fps);
+    const float own_turn = track.placements[static_cast<size_t>(seg.end_frame)].heading_rad -
+                           track.placements[static_cast<size_t>(seg.first_frame)].heading_rad;
+    if (speed < kMinBendSpeed || speed > kMaxWalkSpeed || std::fabs(own_turn) > radians(30.0f)) continue;
+    const Clip& source = clips[static_cast<size_t>(seg.clip)];
+    for (int sign : {1, -1}) {
+      const float bend = radians(sign * kBendDegrees);
+      const int frames = seg.num_frames() + 1;
+      Clip bent = new_clip(skeleton, std::string("derived_bend_") + (sign > 0 ? "left_" : "right_") + seg.name, fps, frames);
+      Placement at = track.placements[static_cast<size_t>(seg.first_frame)];
+      for (int k = 0; k < frames; ++k) {
+        const int f = seg.first_frame + k;
+        const Placement& p = track.placements[static_cast<size_t>(f)];
+        const float extra = bend * static_cast<float>(k) / static_cast<float>(frames - 1);
+        if (k > 0) {
+          const vec2 step = p.pos_m - track.placements[static_cast<size_t>(f - 1)].pos_m;
+          at.pos_m += rotate_ground(step, extra - 0.5f * bend / static_cast<float>(frames - 1));
+        }
+        at.heading_rad = p.heading_rad + extra;
+        place(relative_pose(source, f, p), at, bent, k);
+      }
+      bends_of[static_cast<size_t>(s)].push_back(add_clip(std::move(bent), seg.tags));
+      ++report.bends;
+    }
+  }
+  // Every transition of an original piece, for its bent copies too (in, out, and between bends).
+  const size_t original_transitions = graph.transitions.size();
+  for (size_t t = 0; t < original_transitions; ++t) {
+    const Transition tr = graph.transitions[t];
+    const auto variants = [&](int seg) {
+      std::vector<int> out{seg};
+      if (seg < static_cast<int>(bends_of.size()))
+        out.insert(out.end(), bends_of[static_cast<size_t>(seg)].begin(), bends_of[static_cast<size_t>(seg)].end());
+      return out;
+    };
+    for (int from : variants(tr.from))
+      for (int to : variants(tr.to))
+        if (from != tr.from || to != tr.to) graph.transitions.push_back({from, to, tr.blend_frames});
+  }
   graph.finalize();
 }
 

@@ -4,14 +4,18 @@
 // Capture sessions record walks, turns and runs, rarely a standing idle, turns on the spot or
 // stops; without them the feasible motion tree has nothing to do once a wall is near, and the
 // avatar freezes (issue 16: 3-8 m walked in 60 s). So, at library build time:
-//  * a standing pose: the capture's stillest upright frame (pelvis and both ankles slowest);
+//  * a standing pose: the capture's stillest upright frame (pelvis and both ankles slowest), the
+//    most compact of those (the idle's body disc must fit wherever the avatar stops);
 //  * an idle loop: that pose held for a second (`derived_idle`);
 //  * turns on the spot, both ways, 45 / 90 / 135 degrees: the standing pose turned about the
 //    pelvis, eased in and out (the feet pivot with the body: nothing here plants them);
 //  * a stop from every walking segment's end: the walk plays on while its ground speed and turn
 //    rate ease to zero and the pose blends into the standing pose over half a second;
 //  * starts into walking segments: the reverse, from the standing pose into the walk's own
-//    frames, speed easing up to the walk's.
+//    frames, speed easing up to the walk's;
+//  * sharper walking turns: every walking piece that goes nearly straight, bent 40 degrees left
+//    and right (its ground path turns at a constant rate, the poses stay the capture's, so the
+//    feet slide a little, as under root steering).
 // Each derived clip joins the graph where its first or last pose is the pose it joins (a 4-frame
 // blend takes up the ground placement's rounding), so every walking clip can be stopped and
 // started, and the graph's largest strongly connected component keeps clips the automatic
@@ -28,7 +32,7 @@ struct DerivedMotionReport {
   std::string standing_clip;      ///< Where the standing pose comes from.
   int standing_frame = -1;
   float standing_speed_m_per_s = 0.0f;  ///< Pelvis ground speed there (0: perfectly still).
-  int idles = 0, turns = 0, stops = 0, starts = 0;
+  int idles = 0, turns = 0, stops = 0, starts = 0, bends = 0;
 };
 
 /// Appends the derived clips to `clips` (and their tags to `tags`) and their segments and

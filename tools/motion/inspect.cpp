@@ -141,8 +141,9 @@ int command_graph(const MotionSource& source) {
               r.segments_before_prune, r.edges_before_prune, r.segments, r.edges);
   const DerivedMotionReport& d = report.derived;
   std::printf("derived (the capture lacks them): standing pose from %s frame %d (pelvis %.2f m/s), "
-              "%d idle loop, %d turns on the spot, %d stops, %d starts\n",
-              d.standing_clip.c_str(), d.standing_frame, d.standing_speed_m_per_s, d.idles, d.turns, d.stops, d.starts);
+              "%d idle loop, %d turns on the spot, %d stops, %d starts, %d bent walking pieces\n",
+              d.standing_clip.c_str(), d.standing_frame, d.standing_speed_m_per_s, d.idles, d.turns, d.stops, d.starts,
+              d.bends);
   for (const ClipInGraph& c : report.clips) {
     if (c.derived) continue;
     if (c.segments_kept > 0)
