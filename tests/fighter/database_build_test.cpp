@@ -144,6 +144,36 @@ TEST(FighterDatabase, SplitsAFolderWithoutSidecarAndSavesWhatItFound) {
   }
 }
 
+// A capture whose joints are named nothing a person would recognise (j0, j7, ...) supplies the
+// same strikes: the takes land on the canonical skeleton, where automatic splitting finds what it
+// finds on the original names. (A sidecar names the joints of the files it annotates.)
+TEST(FighterDatabase, TakesOfAnyNamingSupplyTheSameStrikes) {
+  FORESIGHT_REQUIRE_MOCAP();
+  const std::filesystem::path dir = test::scratch_dir();
+  for (const auto& entry : std::filesystem::directory_iterator(test::mocap_dir() / "fighting")) {
+    if (entry.path().extension() != ".bvh") continue;
+    BvhDocument doc;
+    std::string error;
+    ASSERT_TRUE(bvh_load(entry.path(), doc, error)) << error;
+    for (size_t j = 0; j < doc.joints.size(); ++j) doc.joints[j].name = "j" + std::to_string(j * 7 % 23);
+    ASSERT_TRUE(bvh_save(dir / entry.path().filename(), doc, error)) << error;
+  }
+  FighterDatabase original, renamed;
+  FolderLoadReport a, b;
+  std::string error;
+  ASSERT_TRUE(fighter_database_add_folder(original, test::mocap_dir() / "fighting", {}, StrikeSplitParams{}, &a, error)) << error;
+  ASSERT_TRUE(fighter_database_add_folder(renamed, dir, {}, StrikeSplitParams{}, &b, error)) << error;
+  EXPECT_EQ(b.takes_loaded, a.takes_loaded);
+  ASSERT_EQ(renamed.entries.size(), original.entries.size());
+  ASSERT_GE(renamed.entries.size(), 13u);
+  for (std::size_t i = 0; i < original.entries.size(); ++i) {
+    EXPECT_EQ(renamed.entries[i].kind, original.entries[i].kind);
+    EXPECT_EQ(renamed.entries[i].hit_frame, original.entries[i].hit_frame);
+    EXPECT_EQ(renamed.entries[i].hit_joint, original.entries[i].hit_joint);
+  }
+  expect_consistent(renamed);
+}
+
 TEST(FighterDatabase, ABrokenSidecarStopsTheLoadWithItsNameAndField) {
   FORESIGHT_REQUIRE_MOCAP();
   const std::filesystem::path path = test::scratch_dir() / "strikes.json";

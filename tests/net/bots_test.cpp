@@ -174,6 +174,30 @@ TEST(Bots, GoalSeekersOnRealMotionCaptureWalkHalfAsFarAsOnTheBuiltInLibraryAtLea
   EXPECT_GE(captured.server.tree_size_mean, 1000.0);
 }
 
+// The arena on captured motion only: the avatars' locomotion and the fighters' extra strikes both
+// from the Bandai capture. The fighters approach dodging bots, strike and hit.
+TEST(Bots, FightersOnCapturedLocomotionAndStrikesStrikeAndHit) {
+  FORESIGHT_REQUIRE_MOCAP();
+  server::ServerConfig config = match_config("arena", test::mocap_dir() / "locomotion");
+  config.fighters = -1;  // one per NPC spawn of the arena
+  config.fighter_strikes = (test::mocap_dir() / "fighting").string();
+  config.fighter_strikes_sidecar = std::string(FORESIGHT_DATA_DIR) + "/fighter/bandai_fighting.strikes.json";
+  test::BotMatch m(config, 6, bots::BotScript::kDodge);
+  ASSERT_NE(m.server.fighter_assets(), nullptr);
+  bots::BotFleet fleet(m.server.library(), m.config);
+  m.play(fleet, 30 * 30);
+  const bots::BotReport r = fleet.report(m.now);
+  fleet.disconnect_all();
+  EXPECT_EQ(r.connected, 6);
+  const server::ServerCounters& c = m.server.counters();
+  std::printf("[          ] captured arena: %llu strikes, %llu hits in 30 s\n",
+              static_cast<unsigned long long>(c.fighter_strikes), static_cast<unsigned long long>(c.fighter_hits));
+  EXPECT_GE(c.fighter_strikes, 3u);
+  EXPECT_GE(c.fighter_hits, 1u);
+  EXPECT_EQ(c.fighter_strike_failures, 0u);
+  EXPECT_EQ(r.scene_collisions, 0u);
+}
+
 TEST(Bots, AnotherLibraryIsRefusedAndReported) {
   Match m("maze", 3, bots::BotScript::kGoals);
   MotionLibrary other = m.server.library();
