@@ -281,8 +281,8 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
     const float own_turn = track.placements[static_cast<size_t>(seg.end_frame)].heading_rad -
                            track.placements[static_cast<size_t>(seg.first_frame)].heading_rad;
     if (speed < kMinBendSpeed || speed > kMaxWalkSpeed || std::fabs(own_turn) > radians(30.0f)) continue;
-    const Clip& source = clips[static_cast<size_t>(seg.clip)];
     for (int sign : {1, -1}) {
+      const Clip& source = clips[static_cast<size_t>(seg.clip)];  // add_clip below may move `clips`
       const float bend = radians(sign * kBendDegrees);
       const int frames = seg.num_frames() + 1;
       Clip bent = new_clip(skeleton, std::string("derived_bend_") + (sign > 0 ? "left_" : "right_") + seg.name, fps, frames);
@@ -314,7 +314,7 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
     };
     for (int from : variants(tr.from))
       for (int to : variants(tr.to))
-        if (from != tr.from || to != tr.to) graph.transitions.push_back({from, to, tr.blend_frames});
+        if (from != tr.from || to != tr.to) graph.transitions.push_back({from, to, std::max(tr.blend_frames, kJoinBlendFrames)});
   }
   graph.finalize();
 }
