@@ -219,15 +219,18 @@ bool humanoid_map_find(const Skeleton& s, std::span<const vec3> positions, Human
     path.insert(path.begin(), out.pelvis);
     int ankle_index = -1;
     for (int k = static_cast<int>(path.size()) - 1; k >= 1 && ankle_index < 0; --k) {
-      // Long and, in most frames, upright (a run's tallest frame may swing the shin far back).
+      // The shin: a long bone (a foot's are under a tenth of the body) whose upper end, the
+      // knee, is well off the ground in most frames, standing, running or crouching (a foot's
+      // joints stay near it).
       const int a = path[static_cast<size_t>(k - 1)], b = path[static_cast<size_t>(k)];
-      std::vector<float> upright;
+      std::vector<float> raised;
       for (int f = 0; f < p.frames; ++f) {
-        const vec3 bone = p.at(f, b) - p.at(f, a);
-        upright.push_back(std::fabs(bone.y) / std::max(glm::length(bone), 1e-9f));
+        float lowest = std::numeric_limits<float>::max();
+        for (int j = 0; j < n; ++j) lowest = std::min(lowest, p.at(f, j).y);
+        raised.push_back(p.at(f, a).y - lowest);
       }
-      std::nth_element(upright.begin(), upright.begin() + upright.size() / 2, upright.end());
-      if (p.ref_distance(a, b) > 0.12f * h && upright[upright.size() / 2] > 0.6f) ankle_index = k;
+      std::nth_element(raised.begin(), raised.begin() + raised.size() / 2, raised.end());
+      if (p.ref_distance(a, b) > 0.12f * h && raised[raised.size() / 2] > 0.15f * h) ankle_index = k;
     }
     int hip = -1, knee = -1;
     if (ankle_index < 0 || !balanced_pair(p, path, ankle_index, 0.3f * h, hip, knee))

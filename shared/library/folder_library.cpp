@@ -9,13 +9,19 @@
 namespace foresight {
 namespace {
 
-// Tags for clips nobody annotated, from how fast the root moves (the auto graph knows nothing else).
-uint32_t tags_from_speed(const MotionLibrary& lib, int clip) {
+// Tags for clips nobody annotated, from how fast the root moves and how low the pelvis goes (the
+// auto graph knows nothing else): idle below 0.2 m/s, run above 2.2 m/s, crouch when the pelvis
+// spends most of the clip under 78 % of its standing height (a crouch-walk's is about 65 %).
+uint32_t tags_of_clip(const MotionLibrary& lib, int clip) {
   const Clip& c = lib.clips[clip];
   const Placement a = lib.root_placement(clip, 0), b = lib.root_placement(clip, c.num_frames - 1);
   const float speed = glm::length(b.pos_m - a.pos_m) / std::max(c.duration_s(), 1e-3f);
-  if (speed < 0.2f) return kTagIdle;
-  return kTagLocomotion | (speed > 2.2f ? kTagRun : 0u);
+  std::vector<float> heights;
+  for (int f = 0; f < c.num_frames; ++f) heights.push_back(c.frame_pos(f)[0].y);
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  const uint32_t crouch = heights[heights.size() / 2] < 0.78f * lib.skeleton.rest_offsets_m[0].y ? kTagCrouch : 0u;
+  if (speed < 0.2f) return kTagIdle | crouch;
+  return kTagLocomotion | crouch | (speed > 2.2f ? kTagRun : 0u);
 }
 
 }  // namespace
@@ -113,7 +119,7 @@ bool motion_library_from_folder(const MotionSource& source, MotionLibrary& out,
                    std::to_string(rep.graph.segments) + " segments; raise --threshold", false;
   if (!motion_library_compile(lib, error)) return false;
   // Tag captured clips from the compiled root tracks, then recompile so segments and hash carry them.
-  for (size_t c = 0; c < captured; ++c) lib.clip_tags[c] = tags_from_speed(lib, static_cast<int>(c));
+  for (size_t c = 0; c < captured; ++c) lib.clip_tags[c] = tags_of_clip(lib, static_cast<int>(c));
   for (Segment& s : lib.graph.segments) s.tags = lib.clip_tags[static_cast<size_t>(s.clip)];
   if (!motion_library_compile(lib, error)) return false;
   out = std::move(lib);

@@ -159,5 +159,42 @@ TEST(FolderLibrary, CapturesOfDifferentSkeletonsMixInOneFolder) {
   }
 }
 
+// The built-in library written out as BVH files and brought back as if it were a studio's
+// capture: every clip kept, the crouching ones found crouching by their pelvis height alone (the
+// automatic graph knows no names), and every command direction followable.
+TEST(FolderLibrary, TheBuiltInLibraryExportedAsCaptureComesBackCrouchingWhereItCrouches) {
+  const MotionLibrary built_in = motion_library_default();
+  const auto dir = test::scratch_dir();
+  std::string error;
+  for (const Clip& clip : built_in.clips)
+    ASSERT_TRUE(bvh_save(dir / (clip.name + ".bvh"), bvh_from_clip(built_in.skeleton, clip), error)) << error;
+  MotionLibrary lib;
+  LibraryImportReport report;
+  ASSERT_TRUE(motion_library_from_folder(folder(dir), lib, &report, error)) << error;
+  for (const ClipImport& f : report.files) EXPECT_TRUE(f.kept) << f.file << ": " << f.reason;
+  // Crouch-walks and crouched idles are found crouching, walks, runs and the idle are not (the
+  // transitions between the two, crouch_down and the like, may go either way).
+  int crouch_clips = 0, upright_clips = 0;
+  for (size_t c = 0; c < lib.clips.size(); ++c) {
+    const std::string& name = lib.clips[c].name;
+    const bool crouched = (lib.clip_tags[c] & kTagCrouch) != 0;
+    if (name.starts_with("crouch_walk_l") || name.starts_with("crouch_walk_r") || name.starts_with("crouch_walk_turn") ||
+        name.starts_with("crouch_idle")) {
+      EXPECT_TRUE(crouched) << name;
+      ++crouch_clips;
+    } else if (name.starts_with("walk_") || name.starts_with("run_") || name == "idle") {
+      EXPECT_FALSE(crouched) << name;
+      ++upright_clips;
+    }
+  }
+  EXPECT_GE(upright_clips, 10);
+  EXPECT_GE(crouch_clips, 4);
+  for (int start : {standing_segment(lib), walking_segment(lib)}) {
+    ASSERT_GE(start, 0);
+    const auto can = followable_directions(lib, start);
+    for (int k = 0; k < kCommandSectors; ++k) EXPECT_TRUE(can[static_cast<size_t>(k)]) << command_sector_name(k);
+  }
+}
+
 }  // namespace
 }  // namespace foresight
