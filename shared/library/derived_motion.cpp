@@ -1,5 +1,6 @@
 #include "library/derived_motion.hpp"
 
+#include "anim/author/two_bone_ik.hpp"
 #include "anim/canonical_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
@@ -84,6 +85,56 @@ void velocity_at(const ClipTrack& t, int frame, float fps, vec2& v, float& turn)
   turn = (t.placements[static_cast<size_t>(b)].heading_rad - t.placements[static_cast<size_t>(a)].heading_rad) / dt;
 }
 
+// A turn on the spot in two steps with the feet planted: the body turns about the pelvis, eased;
+// the foot on the turning side steps to its place in the new facing during the first half, the
+// other foot in the second; a foot on the ground stays exactly where it is (two-bone leg IK).
+// First and last frames are the standing pose, unturned and turned.
+Clip planted_turn(const Skeleton& skeleton, const RelativePose& stand, float angle, int frames,
+                  const std::string& name, float fps) {
+  Clip turn = new_clip(skeleton, name, fps, frames);
+  const int n = skeleton.num_joints();
+  // The standing pose's world joints at heading 0, and at the turn's end.
+  std::vector<vec3> global_pos(static_cast<size_t>(n)), gp(static_cast<size_t>(n));
+  std::vector<quat> global_rot(static_cast<size_t>(n)), gr(static_cast<size_t>(n));
+  fk_pose(skeleton, stand.pos, stand.rot, global_pos, global_rot);
+  const int ankles[2] = {kCanonLeftFoot, kCanonRightFoot};
+  const int hips[2] = {kCanonLeftUpLeg, kCanonRightUpLeg};
+  const int lead = angle > 0.0f ? 0 : 1;  // the foot on the turning side steps first
+  const Placement end{vec2(0.0f), angle};
+  for (int k = 0; k < frames; ++k) {
+    const float t = static_cast<float>(k) / static_cast<float>(frames - 1);
+    const Placement body{vec2(0.0f), angle * ease(t)};
+    place(stand, body, turn, k);
+    auto pos = turn.frame_pos(k);
+    auto rot = turn.frame_rot(k);
+    // Globals of the turned standing pose (pelvis and hips follow the body).
+    fk_pose(skeleton, pos, rot, gp, gr);
+    for (int side = 0; side < 2; ++side) {
+      // Swing window: the lead foot over [0.05, 0.5], the other over [0.5, 0.95].
+      const float from = side == lead ? 0.05f : 0.5f, to = from + 0.45f;
+      const float s = ease((t - from) / (to - from));
+      const vec3 lift_off = global_pos[static_cast<size_t>(ankles[side])], landing = end.apply(lift_off);
+      vec3 target = glm::mix(lift_off, landing, s);
+      target.y += 0.06f * std::sin(kPi * s);  // lifted while it swings
+      const float foot_yaw = angle * s;
+      const int hip = hips[side];
+      const int knee = hip + 1, ankle = hip + 2;
+      const float upper = glm::length(skeleton.rest_offsets_m[static_cast<size_t>(knee)]);
+      const float lower = glm::length(skeleton.rest_offsets_m[static_cast<size_t>(ankle)]);
+      const vec3 knee_forward(std::sin(foot_yaw), 0.0f, std::cos(foot_yaw));
+      const author::TwoBoneSolution leg = author::solve_two_bone(gp[static_cast<size_t>(hip)], target, upper, lower,
+                                                                 knee_forward, author::HingeSide::kKnee);
+      const quat pelvis = gr[static_cast<size_t>(skeleton.parents[static_cast<size_t>(hip)])];
+      rot[static_cast<size_t>(hip)] = glm::normalize(glm::inverse(pelvis) * leg.upper_global);
+      rot[static_cast<size_t>(knee)] = leg.lower_local;
+      // The foot keeps its standing orientation, turned by its own yaw.
+      const quat foot = quat_from_heading(foot_yaw) * global_rot[static_cast<size_t>(ankle)];
+      rot[static_cast<size_t>(ankle)] = glm::normalize(glm::inverse(leg.upper_global * leg.lower_local) * foot);
+    }
+  }
+  return turn;
+}
+
 }  // namespace
 
 void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, std::vector<uint32_t>& tags,
@@ -156,10 +207,8 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
     for (int sign : {1, -1}) {
       const float angle = radians(static_cast<float>(sign * degrees_turned));
       const int frames = static_cast<int>(std::lround((0.35f + 0.45f * degrees_turned / 90.0f) * fps)) + 1;
-      Clip turn = new_clip(skeleton, std::string("derived_turn_") + (sign > 0 ? "left_" : "right_") +
-                                         std::to_string(degrees_turned), fps, frames);
-      for (int k = 0; k < frames; ++k)
-        place(stand, Placement{vec2(0.0f), angle * ease(static_cast<float>(k) / static_cast<float>(frames - 1))}, turn, k);
+      Clip turn = planted_turn(skeleton, stand, angle, frames,
+                               std::string("derived_turn_") + (sign > 0 ? "left_" : "right_") + std::to_string(degrees_turned), fps);
       const int id = add_clip(std::move(turn), kTagIdle | kTagTurn);
       standing_ends.push_back(id), standing_starts.push_back(id);
       ++report.turns;

@@ -8,7 +8,9 @@
 //    most compact of those (the idle's body disc must fit wherever the avatar stops);
 //  * an idle loop: that pose held for a second (`derived_idle`);
 //  * turns on the spot, both ways, 45 / 90 / 135 degrees: the standing pose turned about the
-//    pelvis, eased in and out (the feet pivot with the body: nothing here plants them);
+//    pelvis, eased in and out, in two steps with the feet planted (the foot on the turning side
+//    steps to its place in the new facing, then the other; two-bone leg IK keeps a foot on the
+//    ground exactly where it is);
 //  * a stop from every walking segment's end: the walk plays on while its ground speed and turn
 //    rate ease to zero and the pose blends into the standing pose over half a second;
 //  * starts into walking segments: the reverse, from the standing pose into the walk's own

@@ -1,6 +1,7 @@
 #include "library/library_source.hpp"
 #include "library/steerability.hpp"
 #include "anim/canonical_skeleton.hpp"
+#include "anim/fk.hpp"
 #include "library_checks.hpp"
 #include "support/bvh_variants.hpp"
 #include "support/test_paths.hpp"
@@ -59,6 +60,23 @@ TEST(FolderLibrary, RealLocomotionCaptureGivesAStronglyConnectedGraph) {
       EXPECT_TRUE(can[static_cast<size_t>(k)]) << lib.graph.segments[static_cast<size_t>(start)].name << " cannot go "
                                                << command_sector_name(k);
   }
+  // Turns on the spot keep a foot planted in every frame (the other steps round), and end on the
+  // standing pose: both ankles where the turned standing pose has them.
+  int turns = 0;
+  std::vector<vec3> pos;
+  for (const Clip& clip : lib.clips) {
+    if (!clip.name.starts_with("derived_turn_")) continue;
+    ++turns;
+    fk_clip_positions(lib.skeleton, clip, pos);
+    const int n = clip.num_joints;
+    for (int f = 1; f < clip.num_frames; ++f) {
+      float still = 1e9f;
+      for (int ankle : {kCanonLeftFoot, kCanonRightFoot})
+        still = std::min(still, glm::length(pos[static_cast<size_t>(f) * n + ankle] - pos[static_cast<size_t>(f - 1) * n + ankle]));
+      EXPECT_LT(still, 0.002f) << clip.name << " frame " << f << ": no foot planted";
+    }
+  }
+  EXPECT_EQ(turns, 6);
   // Captured motion through blended edges: joint jumps stay within a few frames' worth of motion.
   test::expect_continuous_edges(lib, 3.0f, 0.03f);
 }
