@@ -458,6 +458,130 @@ std::string_view root_position_name(RootPosition rule) {
   }
 }
 
+namespace {
+
+// Step 0: the motion read with the body carriers' position channels absolute or relative to their
+// OFFSET, as given, or (kAuto) the reading whose lowest point lies nearer the floor.
+Motion read_with_root_rule(const BvhDocument& doc, const BvhImportOptions& options, RootPosition& used) {
+  std::vector<bool> add = limb_position_rules(doc);
+  const std::vector<bool> carriers = body_carriers(doc);
+  bool carrier_offsets = false;
+  for (size_t j = 0; j < carriers.size(); ++j) {
+    if (carriers[j]) add[j] = options.root == RootPosition::kRelative;
+    carrier_offsets |= carriers[j] && glm::length(doc.joints[j].offset) > 0.0f;
+  }
+  Motion m = motion_from_document(doc, add);
+  used = options.root == RootPosition::kRelative ? RootPosition::kRelative : RootPosition::kAbsolute;
+  if (options.root != RootPosition::kAuto || !carrier_offsets) return m;  // both readings agree
+  for (size_t j = 0; j < carriers.size(); ++j)
+    if (carriers[j]) add[j] = true;
+  Motion relative = motion_from_document(doc, add);
+  // The up axis is read from the pelvis, so dummy roots are folded first (on a copy).
+  Motion folded = m;
+  if (anything_moves(folded))
+    while (fold_dummy_root(folded)) {}
+  const vec3 up = up_vector(options.up == UpAxis::kAuto ? detect_up(folded) : options.up);
+  if (std::fabs(median_lowest(relative, up)) >= std::fabs(median_lowest(m, up))) return m;
+  used = RootPosition::kRelative;
+  return relative;
+}
+
+// Step 3: metres per file unit, given or measured (r.body_size, r.humanoid already set).
+void choose_scale(const BvhImportOptions& options, BvhImportReport& r) {
+  if (options.scale > 0.0f) {
+    r.scale = options.scale;
+    r.unit = nearest_unit(options.scale);
+  } else if (options.unit != LengthUnit::kAuto) {
+    r.unit = options.unit;
+    r.scale = length_unit_scale(options.unit);
+  } else if (r.humanoid && r.body_size > 0.0f) {
+    r.scale = kCanonicalStandingHeightM / r.body_size;
+    r.unit = nearest_unit(r.scale);
+    r.height_normalised = true;
+  } else {
+    r.unit = unit_from_body_size(r.body_size);
+    r.scale = length_unit_scale(r.unit);
+  }
+}
+
+// What the import made of a humanoid: its size, where its feet are, warnings, and which joint
+// became which canonical joint.
+void report_humanoid(const Skeleton& s, const Clip& clip, const HumanoidMap& roles, BvhImportReport& r) {
+  std::vector<vec3> all;
+  fk_clip_positions(s, clip, all);
+  const std::vector<vec3> sample = [&] {
+    std::vector<vec3> out;
+    const int samples = std::min(16, clip.num_frames);
+    for (int k = 0; k < samples; ++k) {
+      const int f = samples > 1 ? k * (clip.num_frames - 1) / (samples - 1) : 0;
+      out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(f) * s.num_joints(),
+                 all.begin() + static_cast<std::ptrdiff_t>(f + 1) * s.num_joints());
+    }
+    return out;
+  }();
+  r.standing_height_m = humanoid_stature(roles, sample);
+  r.head_height_m = humanoid_head_height(s, roles, sample);
+  std::vector<float> lows;
+  for (int f = 0; f < clip.num_frames; ++f) {
+    float low = std::numeric_limits<float>::max();
+    for (int side = 0; side < 2; ++side)
+      for (int j : {roles.foot[side], roles.toe[side], roles.toe_end[side]})
+        if (j >= 0) low = std::min(low, all[static_cast<size_t>(f) * s.num_joints() + j].y);
+    lows.push_back(low);
+  }
+  std::nth_element(lows.begin(), lows.begin() + lows.size() / 2, lows.end());
+  r.lowest_foot_m = lows[lows.size() / 2];
+  char line[160];
+  if (r.standing_height_m < 1.4f || r.standing_height_m > 2.2f) {
+    std::snprintf(line, sizeof line, "the body is %.2f m tall, outside human size (1.4-2.2 m): check --bvh-units / --bvh-scale",
+                  r.standing_height_m);
+    r.warnings.emplace_back(line);
+  }
+  if (r.lowest_foot_m > 0.15f || r.lowest_foot_m < -0.05f) {
+    std::snprintf(line, sizeof line, "the feet %s %.0f cm %s the floor (median lowest foot point): check --bvh-root",
+                  r.lowest_foot_m > 0 ? "float" : "sink", std::fabs(r.lowest_foot_m) * 100.0f,
+                  r.lowest_foot_m > 0 ? "above" : "under");
+    r.warnings.emplace_back(line);
+  }
+  r.source_joints = s.joint_names;
+  r.canonical_joint.assign(static_cast<size_t>(s.num_joints()), -1);
+  const HumanoidMap canon = canonical_humanoid_map();
+  auto mark = [&](int source, int target) {
+    if (source >= 0) r.canonical_joint[static_cast<size_t>(source)] = target;
+  };
+  mark(roles.pelvis, kCanonHips), mark(roles.chest, kCanonChest), mark(roles.neck, kCanonNeck);
+  mark(roles.head, kCanonHead), mark(roles.head_top, kCanonHeadTop);
+  for (int side = 0; side < 2; ++side) {
+    mark(roles.clavicle[side], canon.clavicle[side]), mark(roles.upper_arm[side], canon.upper_arm[side]);
+    mark(roles.forearm[side], canon.forearm[side]), mark(roles.hand[side], canon.hand[side]);
+    mark(roles.hand_end[side], canon.hand_end[side]), mark(roles.thigh[side], canon.thigh[side]);
+    mark(roles.shin[side], canon.shin[side]), mark(roles.foot[side], canon.foot[side]);
+    mark(roles.toe[side], canon.toe[side]), mark(roles.toe_end[side], canon.toe_end[side]);
+  }
+  r.source_joint_kept.assign(static_cast<size_t>(s.num_joints()), false);
+  for (int j : roles.used_joints()) r.source_joint_kept[static_cast<size_t>(j)] = true;
+}
+
+// Step 6: the clip on the canonical skeleton with the capture's proportions, measured in its
+// tallest frame (the limbs read straightest there).
+void to_canonical(const Skeleton& source, const Clip& clip, const HumanoidMap& roles, Skeleton& skeleton,
+                  Clip& out) {
+  std::vector<vec3> all;
+  fk_clip_positions(source, clip, all);
+  const int n = source.num_joints();
+  auto frame = [&](int f) { return std::span<const vec3>(all.data() + static_cast<size_t>(f) * n, static_cast<size_t>(n)); };
+  int tallest = 0;
+  float best = -1.0f;
+  for (int f = 0; f < clip.num_frames; ++f) {
+    const float h = humanoid_head_height(source, roles, frame(f));
+    if (h > best) best = h, tallest = f;
+  }
+  skeleton = canonical_skeleton_from_capture(roles, frame(tallest));
+  retarget_to_canonical(source, clip, roles, skeleton, 1.0f, out);
+}
+
+}  // namespace
+
 bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImportOptions& options,
                    Skeleton& skeleton, Clip& clip, BvhImportReport* report, std::string& error) {
   try {
@@ -472,38 +596,14 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
     BvhImportReport r;
     r.source_frames = doc.num_frames;
     r.source_fps = static_cast<float>(1.0 / doc.frame_time_s);
+    Motion m = read_with_root_rule(doc, options, r.root);  // step 0
 
-    // Step 0: both readings of the body carriers' position channels, the one nearer the floor kept.
-    std::vector<bool> add = limb_position_rules(doc);
-    const std::vector<bool> carriers = body_carriers(doc);
-    for (size_t j = 0; j < carriers.size(); ++j)
-      if (carriers[j]) add[j] = options.root == RootPosition::kRelative;
-    Motion m = motion_from_document(doc, add);
-    r.root = options.root == RootPosition::kRelative ? RootPosition::kRelative : RootPosition::kAbsolute;
-    bool carrier_offsets = false;
-    for (size_t j = 0; j < carriers.size(); ++j)
-      carrier_offsets |= carriers[j] && glm::length(doc.joints[j].offset) > 0.0f;
-    if (options.root == RootPosition::kAuto && carrier_offsets) {
-      for (size_t j = 0; j < carriers.size(); ++j)
-        if (carriers[j]) add[j] = true;
-      Motion relative = motion_from_document(doc, add);
-      // The up axis is read from the pelvis, so dummy roots are folded first (on a copy).
-      Motion folded = m;
-      if (anything_moves(folded))
-        while (fold_dummy_root(folded)) {}
-      const vec3 up = up_vector(options.up == UpAxis::kAuto ? detect_up(folded) : options.up);
-      if (std::fabs(median_lowest(relative, up)) < std::fabs(median_lowest(m, up))) {
-        m = std::move(relative);
-        r.root = RootPosition::kRelative;
-      }
-    }
-
-    // In a single frame or a frozen pose nothing rotates: a dummy cannot be told from the
-    // pelvis, so nothing is folded.
+    // Step 1. In a single frame or a frozen pose nothing rotates: a dummy cannot be told from
+    // the pelvis, so nothing is folded.
     if (anything_moves(m))
       while (fold_dummy_root(m)) ++r.folded_root_joints;
 
-    r.up = options.up == UpAxis::kAuto ? detect_up(m) : options.up;
+    r.up = options.up == UpAxis::kAuto ? detect_up(m) : options.up;  // step 2
     convert_axes(m, r.up);
 
     // Step 3: the roles (for the standing height and the canonical skeleton), then the scale.
@@ -513,23 +613,12 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
       r.humanoid = humanoid_map_find(skeleton_of(m), sample, roles, r.not_humanoid);
       r.body_size = r.humanoid ? humanoid_stature(roles, sample) : body_size(m);
     }
-    if (options.scale > 0.0f) {
-      r.scale = options.scale;
-      r.unit = nearest_unit(options.scale);
-    } else if (options.unit != LengthUnit::kAuto) {
-      r.unit = options.unit;
-      r.scale = length_unit_scale(options.unit);
-    } else if (r.humanoid && r.body_size > 0.0f) {
-      r.scale = kCanonicalStandingHeightM / r.body_size;
-      r.unit = nearest_unit(r.scale);
-      r.height_normalised = true;
-    } else {
-      r.unit = unit_from_body_size(r.body_size);
-      r.scale = length_unit_scale(r.unit);
-    }
+    if (options.canonical && !r.humanoid) return error = prefix + r.not_humanoid, false;
+    choose_scale(options, r);
     scale_lengths(m, r.scale);
     make_signs_continuous(m);
 
+    // Step 4.
     const double source_fps = 1.0 / doc.frame_time_s;
     // 45 fps itself (a frame time of 1/45 printed to 7 digits) must land on 30.
     const double fps = options.target_fps > 0.0f   ? options.target_fps
@@ -539,60 +628,7 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
     if (std::fabs(source_fps - fps) > 1e-3 * fps && !resample(m, doc.frame_time_s, fps, error))
       return error = prefix + error, false;
 
-    if (r.humanoid) {
-      const Skeleton s = skeleton_of(m);
-      const std::vector<vec3> sample = sampled_positions(m);
-      r.standing_height_m = humanoid_stature(roles, sample);
-      r.head_height_m = humanoid_head_height(s, roles, sample);
-      std::vector<vec3> all;
-      Clip whole;
-      whole.num_frames = m.frames;
-      whole.num_joints = m.num_joints();
-      whole.local_pos_m = m.pos;
-      whole.local_rot = m.rot;
-      fk_clip_positions(s, whole, all);
-      std::vector<float> lows;
-      for (int f = 0; f < m.frames; ++f) {
-        float low = std::numeric_limits<float>::max();
-        for (int side = 0; side < 2; ++side)
-          for (int j : {roles.foot[side], roles.toe[side], roles.toe_end[side]})
-            if (j >= 0) low = std::min(low, all[static_cast<size_t>(f) * s.num_joints() + j].y);
-        lows.push_back(low);
-      }
-      std::nth_element(lows.begin(), lows.begin() + lows.size() / 2, lows.end());
-      r.lowest_foot_m = lows[lows.size() / 2];
-      char line[160];
-      if (r.standing_height_m < 1.4f || r.standing_height_m > 2.2f) {
-        std::snprintf(line, sizeof line, "the body is %.2f m tall, outside human size (1.4-2.2 m): check --bvh-units / --bvh-scale",
-                      r.standing_height_m);
-        r.warnings.emplace_back(line);
-      }
-      if (r.lowest_foot_m > 0.15f || r.lowest_foot_m < -0.05f) {
-        std::snprintf(line, sizeof line, "the feet %s %.0f cm %s the floor (median lowest foot point): check --bvh-root",
-                      r.lowest_foot_m > 0 ? "float" : "sink", std::fabs(r.lowest_foot_m) * 100.0f,
-                      r.lowest_foot_m > 0 ? "above" : "under");
-        r.warnings.emplace_back(line);
-      }
-      r.source_joints = m.names;
-      r.canonical_joint.assign(static_cast<size_t>(m.num_joints()), -1);
-      const HumanoidMap canon = canonical_humanoid_map();
-      auto mark = [&](int source, int target) {
-        if (source >= 0) r.canonical_joint[static_cast<size_t>(source)] = target;
-      };
-      mark(roles.pelvis, kCanonHips), mark(roles.chest, kCanonChest), mark(roles.neck, kCanonNeck);
-      mark(roles.head, kCanonHead), mark(roles.head_top, kCanonHeadTop);
-      for (int side = 0; side < 2; ++side) {
-        mark(roles.clavicle[side], canon.clavicle[side]), mark(roles.upper_arm[side], canon.upper_arm[side]);
-        mark(roles.forearm[side], canon.forearm[side]), mark(roles.hand[side], canon.hand[side]);
-        mark(roles.hand_end[side], canon.hand_end[side]), mark(roles.thigh[side], canon.thigh[side]);
-        mark(roles.shin[side], canon.shin[side]), mark(roles.foot[side], canon.foot[side]);
-        mark(roles.toe[side], canon.toe[side]), mark(roles.toe_end[side], canon.toe_end[side]);
-      }
-      // Inner spine joints have no canonical twin (the canonical spine is resampled along them).
-    } else if (options.canonical) {
-      return error = prefix + r.not_humanoid, false;
-    }
-
+    Skeleton source = skeleton_of(m);
     Clip out;
     out.name = std::string(name);
     out.fps = r.fps;
@@ -600,27 +636,9 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
     out.num_joints = m.num_joints();
     out.local_pos_m = std::move(m.pos);
     out.local_rot = std::move(m.rot);
-    Skeleton source = skeleton_of(m);
+    if (r.humanoid) report_humanoid(source, out, roles, r);
     if (options.canonical) {
-      const std::vector<vec3> sample = [&] {
-        std::vector<vec3> all;
-        fk_clip_positions(source, out, all);
-        return all;
-      }();
-      // The tallest frame reads the limbs straightest: the bone lengths are measured there.
-      int tallest = 0;
-      float best = -1.0f;
-      const int n = source.num_joints();
-      for (int f = 0; f < out.num_frames; ++f) {
-        const std::span<const vec3> frame(sample.data() + static_cast<size_t>(f) * n, static_cast<size_t>(n));
-        const float h = humanoid_head_height(source, roles, frame);
-        if (h > best) best = h, tallest = f;
-      }
-      skeleton = canonical_skeleton_from_capture(
-          roles, std::span<const vec3>(sample.data() + static_cast<size_t>(tallest) * n, static_cast<size_t>(n)));
-      Clip retargeted;
-      retarget_to_canonical(source, out, roles, skeleton, 1.0f, retargeted);
-      clip = std::move(retargeted);
+      to_canonical(source, out, roles, skeleton, clip);  // step 6
     } else {
       skeleton = std::move(source);
       clip = std::move(out);

@@ -99,10 +99,12 @@ struct BvhImportReport {
   float standing_height_m = 0.0f;  ///< humanoid_stature() after scaling (humanoids).
   float head_height_m = 0.0f;      ///< humanoid_head_height() after scaling (humanoids).
   float lowest_foot_m = 0.0f;      ///< Median over frames of the lowest foot point (humanoids).
-  /// Per source joint (after folding, End Sites included): its name and the canonical joint it
-  /// became (-1: dropped). Filled for humanoids.
+  /// Per source joint (after folding, End Sites included): its name, the canonical joint it
+  /// became (-1: none), and whether its motion is kept (the spine's inner joints have no canonical
+  /// twin, but the canonical spine is resampled along them). Filled for humanoids.
   std::vector<std::string> source_joints;
   std::vector<int> canonical_joint;
+  std::vector<bool> source_joint_kept;
   /// Things a person should look at: a body outside human size, floating or sinking feet.
   std::vector<std::string> warnings;
 };

@@ -26,7 +26,7 @@ nlohmann::json clip_import_json(const ClipImport& c, const Skeleton& library_ske
   if (r.source_frames == 0) return j;  // did not parse
   std::vector<std::string> kept, dropped;
   for (size_t k = 0; k < r.source_joints.size(); ++k)
-    (r.canonical_joint[k] >= 0 ? kept : dropped).push_back(r.source_joints[k]);
+    (r.source_joint_kept[k] ? kept : dropped).push_back(r.source_joints[k]);
   nlohmann::json mapping = nlohmann::json::object();
   for (size_t k = 0; k < r.source_joints.size(); ++k)
     if (r.canonical_joint[k] >= 0)
