@@ -1,7 +1,11 @@
 // libFuzzer: any text through the BVH reader (anim/bvh.hpp: the strict, bounded parser) and, when
-// it parses, the validation and the writer that must accept what the parser produced.
+// it parses, the validation and the writer that must accept what the parser produced, then the
+// import as a folder does it: root rule, dummy roots, humanoid roles, scale and retargeting onto
+// the canonical skeleton (anim/bvh_import.hpp), which must fail cleanly or give finite poses.
 #include "anim/bvh.hpp"
+#include "anim/bvh_import.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <string_view>
 
@@ -13,5 +17,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // What the reader accepts, the rest of the pipeline may assume is valid.
   if (!foresight::bvh_validate(doc, error)) std::abort();
   if (foresight::bvh_write(doc).empty()) std::abort();
+  // Small documents only: the import's cost grows with frames x joints, not what is fuzzed here.
+  if (static_cast<size_t>(doc.num_frames) * doc.joints.size() > 20000) return 0;
+  foresight::BvhImportOptions options;
+  options.canonical = true;
+  foresight::Skeleton skeleton;
+  foresight::Clip clip;
+  if (!foresight::clip_from_bvh(doc, "fuzz", options, skeleton, clip, nullptr, error)) return 0;
+  if (!skeleton.valid()) std::abort();
+  for (const foresight::vec3& p : clip.local_pos_m)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) std::abort();
   return 0;
 }
