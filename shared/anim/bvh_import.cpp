@@ -614,6 +614,8 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
       r.body_size = r.humanoid ? humanoid_stature(roles, sample) : body_size(m);
     }
     if (options.canonical && !r.humanoid) return error = prefix + r.not_humanoid, false;
+    if (!std::isfinite(r.body_size))
+      return error = prefix + "the posed body reaches beyond float range (OFFSETs or position channels too large)", false;
     choose_scale(options, r);
     scale_lengths(m, r.scale);
     make_signs_continuous(m);

@@ -122,6 +122,9 @@ bool humanoid_map_find(const Skeleton& s, std::span<const vec3> positions, Human
   const int n = s.num_joints();
   if (!s.valid() || n < 10 || positions.empty() || positions.size() % static_cast<size_t>(n) != 0)
     return error = "not a humanoid: " + std::to_string(n) + " joints (a body needs at least 10)", false;
+  for (const vec3& v : positions)
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+      return error = "not a humanoid: joint positions beyond float range", false;
   Posed p{s, positions, n, static_cast<int>(positions.size() / static_cast<size_t>(n)), 0, {}, {}, 0.0f};
   p.children.resize(static_cast<size_t>(n));
   for (int j = 1; j < n; ++j) p.children[static_cast<size_t>(s.parents[static_cast<size_t>(j)])].push_back(j);

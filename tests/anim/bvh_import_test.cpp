@@ -372,6 +372,17 @@ TEST(BvhImport, RejectsEmptyMotionInvalidDocumentsAndBadTargetFps) {
   EXPECT_FALSE(clip_from_bvh(slow, "slow", {}, s, c, nullptr, error));
   EXPECT_NE(error.find("too large"), std::string::npos) << error;
   EXPECT_FALSE(clip_load_bvh(test::scratch_dir() / "absent.bvh", {}, s, c, nullptr, error));
+  // OFFSETs near the float limit add up to infinity in the posed body: refused, not imported.
+  BvhDocument huge = test::humanoid_document(1.0f, false);
+  for (BvhJoint& j : huge.joints) j.offset *= 3e38f;
+  EXPECT_FALSE(clip_from_bvh(huge, "huge", {}, s, c, nullptr, error));
+  EXPECT_NE(error.find("beyond float range"), std::string::npos) << error;
+  BvhImportOptions canonical;
+  canonical.canonical = true;
+  EXPECT_FALSE(clip_from_bvh(huge, "huge", canonical, s, c, nullptr, error));
+  // Not a humanoid and asked for the canonical skeleton: refused with the reason.
+  EXPECT_FALSE(clip_from_bvh(ramp_document(30.0, 3), "ramp", canonical, s, c, nullptr, error));
+  EXPECT_NE(error.find("ramp: not a humanoid"), std::string::npos) << error;
 }
 
 TEST(BvhImport, ClipToBvhAndBackGivesTheSameFk) {
