@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -277,6 +278,9 @@ struct LabResult {
   Fig10Result fig10;
   NavigationResult navigation;
   NavigationResult closed_loop;
+  /// When the lab ran on another library (--motions): the same closed loop on the built-in one,
+  /// so the two libraries' figures print side by side (empty otherwise).
+  std::optional<NavigationResult> builtin_closed_loop;
   /// Both recordings carry the content hash of the library loaded now. When not, the library
   /// changed since they were recorded: even the recorder's own controller (look-ahead 1 at the
   /// navigation budget) no longer replays the recorded run exactly.

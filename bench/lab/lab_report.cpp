@@ -416,7 +416,16 @@ std::string lab_json(const LabResult& r) {
       j += ",\"response_controller\":" + json_string(s.controller + ", closed loop");
       j += ",\"response_ms_p50\":" + json_number(s.response_ms_p50, 1);
       j += ",\"response_ms_p95\":" + json_number(s.response_ms_p95, 1);
+      j += ",\"response_goals_reached\":" + std::to_string(s.goals_reached);
+      j += ",\"response_runs\":" + std::to_string(s.recordings);
     }
+  if (r.builtin_closed_loop)
+    for (const ControllerSummary& s : r.builtin_closed_loop->summary)
+      if (s.controller == kResponsiveController) {
+        j += ",\"builtin_response_ms_p50\":" + json_number(s.response_ms_p50, 1);
+        j += ",\"builtin_response_ms_p95\":" + json_number(s.response_ms_p95, 1);
+        j += ",\"builtin_response_goals_reached\":" + std::to_string(s.goals_reached);
+      }
   for (const ControllerSummary& s : n.summary)
     if (s.controller == "look-ahead 1 command") {
       j += ",\"paper_response_ms_p50\":" + json_number(s.response_ms_p50, 1);

@@ -49,10 +49,19 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "foresight-lab: %s\n", error.c_str());
     return 1;
   }
-  const LabResult result = run_lab(lab, options);
+  LabResult result = run_lab(lab, options);
   if (!result.error.empty()) {
     std::fprintf(stderr, "foresight-lab: %s\n", result.error.c_str());
     return 1;
+  }
+  if (!motions.motions_dir.empty()) {
+    // The same closed loop on the built-in library, to print beside this one.
+    LabScene builtin;
+    if (!lab_load(options.scene, {}, builtin, error)) {
+      std::fprintf(stderr, "foresight-lab: built-in library: %s\n", error.c_str());
+      return 1;
+    }
+    result.builtin_closed_loop = run_closed_loop_navigation(builtin, options, lab_learn_statistics(builtin, options));
   }
   if (!lab_write_files(result, lab.scene, out_dir, error)) {
     std::fprintf(stderr, "foresight-lab: %s\n", error.c_str());
@@ -68,6 +77,9 @@ int main(int argc, char** argv) {
   std::printf("%s\n%s\n%s\n%s\n", fig9_text(result.fig9).c_str(),
               fig10_text(result.fig10).c_str(), navigation_text(result.navigation).c_str(),
               navigation_text(result.closed_loop).c_str());
+  if (result.builtin_closed_loop)
+    std::printf("The same closed loop on the built-in library, for comparison:\n%s\n",
+                navigation_text(*result.builtin_closed_loop).c_str());
   std::printf("wrote %s/{fig9.csv,fig9.svg,fig10.csv,fig10.svg,navigation.csv,responses.csv}\n", out_dir.c_str());
   std::printf("runtime %.1f s:", result.wall_s);
   for (const auto& [name, seconds] : result.phase_s) std::printf(" %s %.1f s", name.c_str(), seconds);

@@ -3,6 +3,9 @@
 // helpers compute what they say.
 #include "lab/lab_experiments.hpp"
 
+#include "lab/lab_report.hpp"
+#include "support/test_paths.hpp"
+
 #include <gtest/gtest.h>
 
 namespace foresight::lab {
@@ -49,6 +52,39 @@ TEST(Lab, QuickRunOnObstaclesReproducesItsSafetyFigures) {
   }
   EXPECT_EQ(r.fig9.shape.size(), 5u);
   EXPECT_EQ(r.fig10.panels.size(), static_cast<size_t>(kNumStrategies));
+}
+
+// The lab on a captured library (--motions): the closed-loop player steers the Bandai capture
+// through the maze without a colliding frame, the responsive controller reaches the goal, and
+// the JSON line carries the built-in library's figures beside the capture's.
+TEST(Lab, QuickClosedLoopOnRealCaptureReachesTheGoalBesideTheBuiltInLibrary) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionSource motions;
+  motions.motions_dir = test::mocap_dir() / "locomotion";
+  LabScene captured, builtin;
+  std::string error;
+  ASSERT_TRUE(lab_load("maze", motions, captured, error)) << error;
+  ASSERT_TRUE(lab_load("maze", {}, builtin, error)) << error;
+  LabOptions options;
+  options.quick = true;
+  options.today_rate = false;
+  options.intervals_s = {1.0 / 20};
+  LabResult r = run_lab(captured, options);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_FALSE(r.recordings_match_library);
+  EXPECT_EQ(r.closed_loop.lookahead_collisions, 0);
+  bool found = false;
+  for (const ControllerSummary& c : r.closed_loop.summary)
+    if (c.controller == kResponsiveController) {
+      found = true;
+      EXPECT_EQ(c.goals_reached, c.recordings);
+    }
+  EXPECT_TRUE(found);
+  r.builtin_closed_loop = run_closed_loop_navigation(builtin, options, lab_learn_statistics(builtin, options));
+  const std::string json = lab_json(r);
+  for (const char* key : {"\"response_ms_p95\"", "\"response_goals_reached\"", "\"builtin_response_ms_p50\"",
+                          "\"builtin_response_ms_p95\"", "\"builtin_response_goals_reached\""})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
 }
 
 }  // namespace
