@@ -135,6 +135,38 @@ Clip planted_turn(const Skeleton& skeleton, const RelativePose& stand, float ang
   return turn;
 }
 
+// What the capture has of what steering needs (the report says so; derivation runs anyway:
+// its joins are what connect every walking piece to a stand).
+void detect_captured(const std::vector<ClipTrack>& tracks, float fps, DerivedMotionReport& report) {
+  const int second = static_cast<int>(std::lround(fps));
+  for (const ClipTrack& t : tracks) {
+    const int n = static_cast<int>(t.placements.size());
+    std::vector<float> speed(static_cast<size_t>(n));
+    for (int f = 0; f < n; ++f) {
+      vec2 v;
+      float turn;
+      velocity_at(t, f, fps, v, turn);
+      speed[static_cast<size_t>(f)] = glm::length(v);
+    }
+    const int span = std::min(second, n - 1);  // a whole short clip, else a second
+    for (int f = 0; span > 0 && f + span < n; ++f) {
+      const int g = f + span;
+      float fastest = 0.0f;
+      for (int k = f; k <= g; ++k) fastest = std::max(fastest, speed[static_cast<size_t>(k)]);
+      const float turned = std::fabs(t.placements[static_cast<size_t>(g)].heading_rad - t.placements[static_cast<size_t>(f)].heading_rad);
+      report.captured_idle |= span == second && fastest < 0.15f && turned < radians(10.0f);
+      const float travelled = glm::length(t.placements[static_cast<size_t>(g)].pos_m - t.placements[static_cast<size_t>(f)].pos_m);
+      report.captured_turn_on_spot |= travelled < 0.3f * static_cast<float>(span) / fps && turned >= radians(30.0f);
+    }
+    const int window = static_cast<int>(std::lround(1.5f * fps));
+    for (int f = 0; f < n; ++f)
+      for (int g = f + 1; g < std::min(n, f + window); ++g) {
+        report.captured_stop |= speed[static_cast<size_t>(f)] >= 0.8f && speed[static_cast<size_t>(g)] < 0.15f;
+        report.captured_start |= speed[static_cast<size_t>(f)] < 0.15f && speed[static_cast<size_t>(g)] >= 0.8f;
+      }
+  }
+}
+
 }  // namespace
 
 void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, std::vector<uint32_t>& tags,
@@ -146,6 +178,7 @@ void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, 
   std::vector<ClipTrack> tracks(clips.size());
   for (size_t c = 0; c < clips.size(); ++c)
     extract_root_track(clips[c], find_forward_axis(skeleton, clips[c]), tracks[c].placements);
+  detect_captured(tracks, fps, report);
 
   // The standing pose: the stillest, most compact frame among the upright ones.
   std::vector<float> pelvis_heights;

@@ -31,6 +31,10 @@
 namespace foresight {
 
 struct DerivedMotionReport {
+  /// What the capture itself has (detected from its root tracks): a stand of a second or more
+  /// (under 0.15 m/s, under 10 degrees), a turn on the spot (travelling under 0.3 m/s,
+  /// 30 degrees or more within a second or a shorter clip), a stop or a start (between 0.8 m/s and under 0.15 m/s within 1.5 s).
+  bool captured_idle = false, captured_turn_on_spot = false, captured_stop = false, captured_start = false;
   std::string standing_clip;      ///< Where the standing pose comes from.
   int standing_frame = -1;
   float standing_speed_m_per_s = 0.0f;  ///< Pelvis ground speed there (0: perfectly still).

@@ -46,7 +46,8 @@ int standing_segment(const MotionLibrary& lib) {
   int best = -1;
   float least = std::numeric_limits<float>::max();
   for (int s = 0; s < lib.graph.num_segments(); ++s) {
-    if (!(lib.graph.segments[static_cast<size_t>(s)].tags & kTagIdle)) continue;
+    const uint32_t tags = lib.graph.segments[static_cast<size_t>(s)].tags;
+    if (!(tags & kTagIdle) || (tags & kTagCrouch)) continue;
     const float moved = glm::length(lib.segment_motion[static_cast<size_t>(s)].end.pos_m) +
                         std::fabs(lib.segment_motion[static_cast<size_t>(s)].end.heading_rad);
     if (moved < least) least = moved, best = s;

@@ -20,7 +20,7 @@ std::array<bool, kCommandSectors> followable_directions(const MotionLibrary& lib
                                                         int max_steps = 4,
                                                         float min_speed_m_per_s = 0.3f);
 
-/// The library's standing segment (idle-tagged, moving least) and walking segment (locomotion,
+/// The library's standing segment (idle-tagged, not crouching, moving least) and walking segment (locomotion,
 /// ground speed nearest 1.3 m/s), or -1.
 int standing_segment(const MotionLibrary& library);
 int walking_segment(const MotionLibrary& library);

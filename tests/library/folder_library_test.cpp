@@ -49,6 +49,10 @@ TEST(FolderLibrary, RealLocomotionCaptureGivesAStronglyConnectedGraph) {
   EXPECT_GT(cross, 10);
   // A player's every command can be followed, from standing and from walking (the derived idle,
   // turns on the spot, stops and starts: the capture has none of them).
+  // What the Bandai takes have of it themselves (their README: no walk-to-stop, no turn in place).
+  EXPECT_FALSE(imported.derived.captured_turn_on_spot);
+  EXPECT_FALSE(imported.derived.captured_stop);
+  EXPECT_TRUE(imported.derived.captured_start);  // dataset-2_walk_normal_001 starts from standstill
   EXPECT_EQ(imported.derived.idles, 1);
   EXPECT_EQ(imported.derived.turns, 6);
   EXPECT_GT(imported.derived.stops, 20);
@@ -190,6 +194,11 @@ TEST(FolderLibrary, TheBuiltInLibraryExportedAsCaptureComesBackCrouchingWhereItC
   LibraryImportReport report;
   ASSERT_TRUE(motion_library_from_folder(folder(dir), lib, &report, error)) << error;
   for (const ClipImport& f : report.files) EXPECT_TRUE(f.kept) << f.file << ": " << f.reason;
+  // The built-in library has all a player's commands need, and the detection sees it.
+  EXPECT_TRUE(report.derived.captured_idle);
+  EXPECT_TRUE(report.derived.captured_turn_on_spot);
+  EXPECT_TRUE(report.derived.captured_stop);
+  EXPECT_TRUE(report.derived.captured_start);
   // Crouch-walks and crouched idles are found crouching, walks, runs and the idle are not (the
   // transitions between the two, crouch_down and the like, may go either way).
   int crouch_clips = 0, upright_clips = 0;

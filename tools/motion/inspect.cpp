@@ -140,7 +140,10 @@ int command_graph(const MotionSource& source) {
               "component: %d nodes, %d edges\n",
               r.segments_before_prune, r.edges_before_prune, r.segments, r.edges);
   const DerivedMotionReport& d = report.derived;
-  std::printf("derived (the capture lacks them): standing pose from %s frame %d (pelvis %.2f m/s), "
+  auto has = [](bool b) { return b ? "yes" : "NO"; };
+  std::printf("the capture has: a stand %s, a turn on the spot %s, a stop %s, a start %s\n", has(d.captured_idle),
+              has(d.captured_turn_on_spot), has(d.captured_stop), has(d.captured_start));
+  std::printf("derived: standing pose from %s frame %d (pelvis %.2f m/s), "
               "%d idle loop, %d turns on the spot, %d stops, %d starts, %d bent walking pieces\n",
               d.standing_clip.c_str(), d.standing_frame, d.standing_speed_m_per_s, d.idles, d.turns, d.stops, d.starts,
               d.bends);
