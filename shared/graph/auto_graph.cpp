@@ -23,6 +23,19 @@ struct ClipFrames {
   std::vector<WindowCloud> windows;
 };
 
+// Ground coordinates moved to the cloud's ground centroid (so the best translation is implicit).
+void centre(WindowCloud& w) {
+  float cu = 0, cv = 0;
+  for (size_t i = 0; i < w.u.size(); ++i) cu += w.u[i], cv += w.v[i];
+  cu /= static_cast<float>(w.u.size());
+  cv /= static_cast<float>(w.u.size());
+  for (size_t i = 0; i < w.u.size(); ++i) {
+    w.u[i] -= cu;
+    w.v[i] -= cv;
+    w.self_xz += w.u[i] * w.u[i] + w.v[i] * w.v[i];
+  }
+}
+
 ClipFrames clouds_of(const Skeleton& skeleton, const Clip& clip, const std::vector<int>& joints,
                      const AutoGraphOptions& o) {
   std::vector<vec3> pos;
@@ -38,15 +51,7 @@ ClipFrames clouds_of(const Skeleton& skeleton, const Clip& clip, const std::vect
         w.v.push_back(p.z);
         w.y.push_back(p.y);
       }
-    float cu = 0, cv = 0;
-    for (size_t i = 0; i < w.u.size(); ++i) cu += w.u[i], cv += w.v[i];
-    cu /= static_cast<float>(w.u.size());
-    cv /= static_cast<float>(w.u.size());
-    for (size_t i = 0; i < w.u.size(); ++i) {
-      w.u[i] -= cu;
-      w.v[i] -= cv;
-      w.self_xz += w.u[i] * w.u[i] + w.v[i] * w.v[i];
-    }
+    centre(w);
     out.windows.push_back(std::move(w));
   }
   out.num_windows = static_cast<int>(out.windows.size());
@@ -191,6 +196,44 @@ bool graph_build_automatic(const Skeleton& skeleton, std::span<const Clip> clips
     const int from = segment_ending_at[t.clip_a][static_cast<size_t>(t.frame_a)];
     const int to = segment_starting_at[t.clip_b][static_cast<size_t>(t.frame_b)];
     if (from >= 0 && to >= 0) g.transitions.push_back({from, to, o.window_frames});
+  }
+  // Clip joins: a take's end continuing into a take's start. Kovar's windows look after the cut,
+  // so a clip's last frames never leave it; takes cut into cycles or single moves (walk_l then
+  // walk_r, a crouch-walk step after step) are joined here where A's last pose, carried on at its
+  // last velocity, matches B's first two frames under the ground alignment, with the same threshold.
+  {
+    std::vector<WindowCloud> ends(clips.size()), starts(clips.size());
+    std::vector<vec3> pos;
+    const int n = skeleton.num_joints();
+    for (size_t c = 0; c < clips.size(); ++c) {
+      if (clips[c].num_frames < 2) continue;
+      fk_clip_positions(skeleton, clips[c], pos);
+      const int last = clips[c].num_frames - 1;
+      WindowCloud e, b;
+      for (int k = 0; k < 2; ++k)
+        for (int j : joints) {
+          const vec3 end = pos[static_cast<size_t>(last) * n + j];
+          const vec3 before = pos[static_cast<size_t>(last - 1) * n + j];
+          const vec3 p = k == 0 ? end : end + (end - before);  // the next frame, had it gone on
+          e.u.push_back(p.x), e.v.push_back(p.z), e.y.push_back(p.y);
+          const vec3 q = pos[static_cast<size_t>(k) * n + j];
+          b.u.push_back(q.x), b.v.push_back(q.z), b.y.push_back(q.y);
+        }
+      centre(e);
+      centre(b);
+      ends[c] = std::move(e);
+      starts[c] = std::move(b);
+    }
+    const float join_threshold = o.threshold_rms_m * o.threshold_rms_m * static_cast<float>(2 * joints.size());
+    for (size_t a = 0; a < clips.size(); ++a)
+      for (size_t b = 0; b < clips.size(); ++b) {
+        if (ends[a].u.empty() || starts[b].u.empty()) continue;
+        const int from = segment_ending_at[a][static_cast<size_t>(clips[a].num_frames - 1)];
+        const int to = segment_starting_at[b][0];
+        if (from < 0 || to < 0 || aligned_distance(ends[a], starts[b]) > join_threshold) continue;
+        g.transitions.push_back({from, to, kClipJoinBlendFrames});
+        ++rep.clip_joins;
+      }
   }
   g.finalize();
   rep.segments_before_prune = g.num_segments();

@@ -8,6 +8,10 @@
 //   3. Clips are split at the transition points into segments; consecutive segments of a clip
 //      stay linked; each transition becomes an edge blended over the window.
 //   4. The graph is pruned to its largest strongly connected component (no dead ends).
+// Beyond the paper: clip joins. Windows look after a cut, so a clip's last frames never lead
+// anywhere; where clip A's last pose, carried on one frame at its last velocity, matches clip B's
+// first two frames (same alignment, same threshold), A's end continues into B's start. Takes cut
+// into cycles or single moves (walk_l then walk_r) then chain.
 #include "anim/clip.hpp"
 #include "graph/motion_graph.hpp"
 
@@ -15,6 +19,9 @@
 #include <string>
 
 namespace foresight {
+
+/// Frames over which a clip join is blended (the poses already match within the threshold).
+inline constexpr int kClipJoinBlendFrames = 4;
 
 struct AutoGraphOptions {
   int window_frames = 10;        ///< Frames compared and blended (1/3 s at 30 fps). [Limit: >= 2]
@@ -33,6 +40,7 @@ struct AutoGraphReport {
   long long frame_pairs_compared = 0;
   int local_minima = 0;            ///< Below threshold, before cut-spacing rules.
   int transitions_accepted = 0;    ///< Cross-clip or in-clip jumps added before pruning.
+  int clip_joins = 0;              ///< Ends continued into starts (header comment).
   int segments_before_prune = 0;
   int edges_before_prune = 0;
   int segments = 0;                ///< In the largest strongly connected component.

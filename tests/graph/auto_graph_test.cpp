@@ -23,7 +23,9 @@ TEST(AutoGraph, PeriodicClipLoopsOntoItselfOnePeriodBack) {
   for (const Transition& t : g.transitions) {
     if (t.blend_frames == 0) continue;  // clip-order link
     ++jumps;
-    const int delta = g.segments[t.from].end_frame - g.segments[t.to].first_frame;
+    int delta = g.segments[t.from].end_frame - g.segments[t.to].first_frame;
+    // A clip join leaves from the last frame (119) as if the clip went on to frame 120.
+    if (g.segments[t.from].end_frame == 119 && g.segments[t.to].first_frame == 0) ++delta;
     EXPECT_EQ(delta % 30, 0) << "jump of " << delta << " frames";
   }
   EXPECT_GT(jumps, 0);
@@ -68,6 +70,43 @@ TEST(AutoGraph, DissimilarClipsAreRefusedWithAReason) {
   o.threshold_rms_m = 0.01f;
   EXPECT_FALSE(graph_build_automatic(s, clips, o, g, nullptr, error));
   EXPECT_NE(error.find("threshold_rms_m"), std::string::npos) << error;
+}
+
+// Two half-period steps cut from one walk (as takes are cut into left and right steps): each is
+// shorter than a window, so no Kovar transition leaves it, but each one's end continues into the
+// other's start: the clip joins chain them into a walk that goes on for ever. A clip whose end
+// does not match (here: a step frozen mid-swing) joins nothing.
+TEST(AutoGraph, TakesCutIntoStepsChainEndToStart) {
+  const Skeleton s = test::walker_skeleton();
+  // 16 frames at period 30: frames 0..15 and 15..30 of the walk (the boundary pose shared).
+  const Clip left = test::walker_clip(s, "left", 16, 30, 0), right = test::walker_clip(s, "right", 16, 30, 15);
+  Clip frozen = test::walker_clip(s, "frozen", 16, 30, 7);
+  for (int f = 0; f < frozen.num_frames; ++f) frozen.frame_rot(f)[1] = frozen.frame_rot(f)[2] = glm::angleAxis(0.5f, vec3(1, 0, 0));
+  const Clip clips[] = {left, right, frozen};
+  AutoGraphOptions o;
+  o.prune_to_largest_component = false;
+  MotionGraph g;
+  AutoGraphReport report;
+  std::string error;
+  ASSERT_TRUE(graph_build_automatic(s, clips, o, g, &report, error)) << error;
+  auto joined = [&](const char* from_clip, const char* to_clip) {
+    for (const Transition& t : g.transitions) {
+      const Segment& a = g.segments[static_cast<size_t>(t.from)];
+      const Segment& b = g.segments[static_cast<size_t>(t.to)];
+      if (clips[a.clip].name == from_clip && clips[b.clip].name == to_clip && a.end_frame == 15 && b.first_frame == 0)
+        return t.blend_frames == kClipJoinBlendFrames;
+    }
+    return false;
+  };
+  EXPECT_TRUE(joined("left", "right"));
+  EXPECT_TRUE(joined("right", "left"));
+  EXPECT_FALSE(joined("frozen", "left"));
+  EXPECT_FALSE(joined("left", "frozen"));
+  EXPECT_GE(report.clip_joins, 2);
+  // Pruned, the two steps are a loop and the frozen clip is gone.
+  MotionGraph pruned;
+  ASSERT_TRUE(graph_build_automatic(s, clips, AutoGraphOptions{}, pruned, nullptr, error)) << error;
+  for (const Segment& seg : pruned.segments) EXPECT_NE(clips[seg.clip].name, "frozen");
 }
 
 TEST(AutoGraph, MismatchedFrameRatesAreRefused) {

@@ -133,9 +133,9 @@ int command_graph(const MotionSource& source) {
   }
   const AutoGraphReport& r = report.graph;
   std::printf("%zu clips; %lld frame pairs compared; %d local minima below %.3f m RMS; "
-              "%d transitions accepted\n",
+              "%d transitions accepted, %d clip ends continued into starts\n",
               lib.clips.size(), r.frame_pairs_compared, r.local_minima, source.graph.threshold_rms_m,
-              r.transitions_accepted);
+              r.transitions_accepted, r.clip_joins);
   std::printf("before pruning: %d nodes, %d edges; with derived motion, largest strongly connected "
               "component: %d nodes, %d edges\n",
               r.segments_before_prune, r.edges_before_prune, r.segments, r.edges);
