@@ -169,236 +169,282 @@ void detect_captured(const std::vector<ClipTrack>& tracks, float fps, DerivedMot
 
 }  // namespace
 
-void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, std::vector<uint32_t>& tags,
-                            MotionGraph& graph, DerivedMotionReport& report) {
-  report = DerivedMotionReport{};
-  if (clips.empty() || skeleton.num_joints() != kCanonJointCount) return;
-  const float fps = clips[0].fps;
-  const int captured = static_cast<int>(clips.size());
-  std::vector<ClipTrack> tracks(clips.size());
-  for (size_t c = 0; c < clips.size(); ++c)
-    extract_root_track(clips[c], find_forward_axis(skeleton, clips[c]), tracks[c].placements);
-  detect_captured(tracks, fps, report);
+namespace {
 
+// One derivation: the library's clips and graph as they grow, and what every step needs.
+class Deriver {
+ public:
+  Deriver(const Skeleton& skeleton, std::vector<Clip>& clips, std::vector<uint32_t>& tags, MotionGraph& graph,
+          DerivedMotionReport& report)
+      : skeleton_(skeleton), clips_(clips), tags_(tags), graph_(graph), report_(report),
+        fps_(clips[0].fps), captured_(static_cast<int>(clips.size())), captured_segments_(graph.num_segments()),
+        ease_frames_(std::max(2, static_cast<int>(std::lround(kStopStartSeconds * fps_)))),
+        stops_of_(clips.size(), 0), starts_of_(clips.size(), 0) {
+    tracks_.resize(clips.size());
+    for (size_t c = 0; c < clips.size(); ++c)
+      extract_root_track(clips[c], find_forward_axis(skeleton, clips[c]), tracks_[c].placements);
+  }
+
+  void run() {
+    detect_captured(tracks_, fps_, report_);
+    find_standing_pose();
+    add_idle_and_turns();
+    add_stops_and_starts();
+    // Anything that ends standing may go on to anything that starts standing.
+    for (int from : standing_ends_)
+      for (int to : standing_starts_) graph_.transitions.push_back({from, to, kJoinBlendFrames});
+    add_bends();
+    graph_.finalize();
+  }
+
+ private:
   // The standing pose: the stillest, most compact frame among the upright ones.
-  std::vector<float> pelvis_heights;
-  for (const Clip& c : clips)
-    for (int f = 0; f < c.num_frames; ++f) pelvis_heights.push_back(c.frame_pos(f)[0].y);
-  std::nth_element(pelvis_heights.begin(), pelvis_heights.begin() + pelvis_heights.size() / 2, pelvis_heights.end());
-  const float upright = 0.93f * pelvis_heights[pelvis_heights.size() / 2];
-  int best_clip = 0, best_frame = 0;
-  float best_score = 1e30f, best_speed = 0.0f;
-  std::vector<vec3> pos;
-  const int n = skeleton.num_joints();
-  for (int c = 0; c < captured; ++c) {
-    fk_clip_positions(skeleton, clips[static_cast<size_t>(c)], pos);
-    const int frames = clips[static_cast<size_t>(c)].num_frames;
-    for (int f = 1; f + 1 < frames; ++f) {
-      if (clips[static_cast<size_t>(c)].frame_pos(f)[0].y < upright) continue;
-      vec2 v;
-      float turn;
-      velocity_at(tracks[static_cast<size_t>(c)], f, fps, v, turn);
-      float ankles = 0.0f;
-      for (int j : {kCanonLeftFoot, kCanonRightFoot})
-        ankles += glm::length(pos[static_cast<size_t>(f + 1) * n + j] - pos[static_cast<size_t>(f - 1) * n + j]) * fps / 2.0f;
-      // A compact pose too (arms down, feet together): the idle's body disc is what must fit
-      // wherever the avatar stops. Each 10 cm of reach counts like 0.1 m/s of motion.
-      const vec2 centre = ground(pos[static_cast<size_t>(f) * n]);
-      float reach = 0.0f;
-      for (int j = 0; j < n; ++j) reach = std::max(reach, glm::length(ground(pos[static_cast<size_t>(f) * n + j]) - centre));
-      const float score = glm::length(v) + 0.5f * ankles + reach;
-      if (score < best_score) best_score = score, best_clip = c, best_frame = f, best_speed = glm::length(v);
+  void find_standing_pose() {
+    std::vector<float> pelvis_heights;
+    for (int c = 0; c < captured_; ++c)
+      for (int f = 0; f < clips_[static_cast<size_t>(c)].num_frames; ++f)
+        pelvis_heights.push_back(clips_[static_cast<size_t>(c)].frame_pos(f)[0].y);
+    std::nth_element(pelvis_heights.begin(), pelvis_heights.begin() + pelvis_heights.size() / 2, pelvis_heights.end());
+    const float upright = 0.93f * pelvis_heights[pelvis_heights.size() / 2];
+    int best_clip = 0, best_frame = 0;
+    float best_score = 1e30f;
+    std::vector<vec3> pos;
+    const int n = skeleton_.num_joints();
+    for (int c = 0; c < captured_; ++c) {
+      const Clip& clip = clips_[static_cast<size_t>(c)];
+      fk_clip_positions(skeleton_, clip, pos);
+      for (int f = 1; f + 1 < clip.num_frames; ++f) {
+        if (clip.frame_pos(f)[0].y < upright) continue;
+        const float speed = glm::length(velocity(c, f).ground);
+        float ankles = 0.0f;
+        for (int j : {kCanonLeftFoot, kCanonRightFoot})
+          ankles += glm::length(pos[static_cast<size_t>(f + 1) * n + j] - pos[static_cast<size_t>(f - 1) * n + j]) * fps_ / 2.0f;
+        // A compact pose too (arms down, feet together): the idle's body disc is what must fit
+        // wherever the avatar stops. Each 10 cm of reach counts like 0.1 m/s of motion.
+        const vec2 centre = ground(pos[static_cast<size_t>(f) * n]);
+        float reach = 0.0f;
+        for (int j = 0; j < n; ++j) reach = std::max(reach, glm::length(ground(pos[static_cast<size_t>(f) * n + j]) - centre));
+        const float score = speed + 0.5f * ankles + reach;
+        if (score < best_score) {
+          best_score = score, best_clip = c, best_frame = f;
+          report_.standing_speed_m_per_s = speed;
+        }
+      }
     }
+    report_.standing_clip = clips_[static_cast<size_t>(best_clip)].name;
+    report_.standing_frame = best_frame;
+    stand_ = relative_pose(clips_[static_cast<size_t>(best_clip)], best_frame, placement(best_clip, best_frame));
   }
-  report.standing_clip = clips[static_cast<size_t>(best_clip)].name;
-  report.standing_frame = best_frame;
-  report.standing_speed_m_per_s = best_speed;
-  const RelativePose stand = relative_pose(clips[static_cast<size_t>(best_clip)], best_frame,
-                                           tracks[static_cast<size_t>(best_clip)].placements[static_cast<size_t>(best_frame)]);
 
-  std::vector<int> standing_ends;    // segments that end in the standing pose
-  std::vector<int> standing_starts;  // segments that begin in it
-  auto add_clip = [&](Clip clip, uint32_t tag) {
-    const int id = graph.num_segments();
-    const int frames = clip.num_frames;
-    graph.segments.push_back({clip.name, static_cast<int>(clips.size()), 0, frames - 1, tag});
-    clips.push_back(std::move(clip));
-    tags.push_back(tag);
-    return id;
-  };
-
-  // Idle loop and turns on the spot.
-  {
-    const int frames = static_cast<int>(std::lround(kIdleSeconds * fps)) + 1;
-    Clip idle = new_clip(skeleton, "derived_idle", fps, frames);
-    for (int k = 0; k < frames; ++k) place(stand, Placement{}, idle, k);
+  void add_idle_and_turns() {
+    const int idle_frames = static_cast<int>(std::lround(kIdleSeconds * fps_)) + 1;
+    Clip idle = new_clip(skeleton_, "derived_idle", fps_, idle_frames);
+    for (int k = 0; k < idle_frames; ++k) place(stand_, Placement{}, idle, k);
     const int id = add_clip(std::move(idle), kTagIdle);
-    standing_ends.push_back(id), standing_starts.push_back(id);
-    ++report.idles;
+    standing_ends_.push_back(id), standing_starts_.push_back(id);
+    ++report_.idles;
+    for (int degrees_turned : {45, 90, 135})
+      for (int sign : {1, -1}) {
+        const float angle = radians(static_cast<float>(sign * degrees_turned));
+        const int frames = static_cast<int>(std::lround((0.35f + 0.45f * degrees_turned / 90.0f) * fps_)) + 1;
+        Clip turn = planted_turn(skeleton_, stand_, angle, frames,
+                                 std::string("derived_turn_") + (sign > 0 ? "left_" : "right_") + std::to_string(degrees_turned), fps_);
+        const int turn_id = add_clip(std::move(turn), kTagIdle | kTagTurn);
+        standing_ends_.push_back(turn_id), standing_starts_.push_back(turn_id);
+        ++report_.turns;
+      }
   }
-  for (int degrees_turned : {45, 90, 135}) {
-    for (int sign : {1, -1}) {
-      const float angle = radians(static_cast<float>(sign * degrees_turned));
-      const int frames = static_cast<int>(std::lround((0.35f + 0.45f * degrees_turned / 90.0f) * fps)) + 1;
-      Clip turn = planted_turn(skeleton, stand, angle, frames,
-                               std::string("derived_turn_") + (sign > 0 ? "left_" : "right_") + std::to_string(degrees_turned), fps);
-      const int id = add_clip(std::move(turn), kTagIdle | kTagTurn);
-      standing_ends.push_back(id), standing_starts.push_back(id);
-      ++report.turns;
+
+  // Stops from the end of every walking segment; starts into walks of every curvature; a stop and
+  // a start for any clip still without one.
+  void add_stops_and_starts() {
+    struct StartCandidate {
+      int segment;
+      float turn;
+    };
+    std::vector<StartCandidate> candidates;
+    for (int s = 0; s < captured_segments_; ++s) {
+      const Segment seg = graph_.segments[static_cast<size_t>(s)];  // add_stop grows the graph
+      const float speed = glm::length(velocity(seg.clip, seg.end_frame).ground);
+      if (speed >= kMinWalkSpeed && speed <= kMaxWalkSpeed) add_stop(s);
+      const Velocity start = velocity(seg.clip, seg.first_frame);
+      const float start_speed = glm::length(start.ground);
+      if (seg.first_frame >= ease_frames_ && start_speed >= kMinWalkSpeed && start_speed <= kMaxWalkSpeed)
+        candidates.push_back({s, start.turn});
+    }
+    // Candidates spread evenly by turn rate.
+    std::sort(candidates.begin(), candidates.end(),
+              [](const StartCandidate& a, const StartCandidate& b) { return a.turn < b.turn; });
+    const size_t starts = std::min<size_t>(candidates.size(), kMaxStarts);
+    for (size_t i = 0; i < starts; ++i)
+      add_start(candidates[starts > 1 ? i * (candidates.size() - 1) / (starts - 1) : 0].segment);
+    // A clip left without a stop or a start (a run, a backward walk, a standing take) would drop
+    // out of the graph: it gets one whatever its speed, into its first segment, out of its last.
+    for (int c = 0; c < captured_; ++c) {
+      int first = -1, last = -1;
+      for (int s = 0; s < captured_segments_; ++s)
+        if (graph_.segments[static_cast<size_t>(s)].clip == c) {
+          if (first < 0) first = s;
+          last = s;
+        }
+      if (first < 0) continue;
+      if (starts_of_[static_cast<size_t>(c)] == 0) add_start(first);
+      if (stops_of_[static_cast<size_t>(c)] == 0) add_stop(last);
     }
   }
 
-  // Stops from the end of every walking segment; starts into walking segments.
-  const int ease_frames = std::max(2, static_cast<int>(std::lround(kStopStartSeconds * fps)));
-  const int captured_segments = graph.num_segments() - report.idles - report.turns;
-  std::vector<int> stops_of(static_cast<size_t>(captured), 0), starts_of(static_cast<size_t>(captured), 0);
-  auto add_stop = [&](int s) {
-    const Segment seg = graph.segments[static_cast<size_t>(s)];
-    const Clip& source = clips[static_cast<size_t>(seg.clip)];
-    const ClipTrack& track = tracks[static_cast<size_t>(seg.clip)];
-    vec2 v;
-    float turn;
-    velocity_at(track, seg.end_frame, fps, v, turn);
-    Clip stop = new_clip(skeleton, "derived_stop_" + seg.name, fps, ease_frames + 1);
-    Placement at = track.placements[static_cast<size_t>(seg.end_frame)];
+  // The walk plays on from the segment's end while its ground speed and turn rate ease to zero and
+  // the pose blends into the standing pose.
+  void add_stop(int s) {
+    const Segment seg = graph_.segments[static_cast<size_t>(s)];
+    const Velocity vel = velocity(seg.clip, seg.end_frame);
+    const vec2 v = vel.ground;
+    const float turn = vel.turn;
+    Clip stop = new_clip(skeleton_, "derived_stop_" + seg.name, fps_, ease_frames_ + 1);
+    Placement at = placement(seg.clip, seg.end_frame);
     float turned = 0.0f;
-    for (int k = 0; k <= ease_frames; ++k) {
+    const Clip& source = clips_[static_cast<size_t>(seg.clip)];
+    for (int k = 0; k <= ease_frames_; ++k) {
       if (k > 0) {
-        const float keep = 1.0f - ease((static_cast<float>(k) - 0.5f) / static_cast<float>(ease_frames));
-        at.pos_m += rotate_ground(v, turned) * keep / fps;
-        turned += turn * keep / fps;
-        at.heading_rad += turn * keep / fps;
+        const float keep = 1.0f - ease((static_cast<float>(k) - 0.5f) / static_cast<float>(ease_frames_));
+        at.pos_m += rotate_ground(v, turned) * keep / fps_;
+        turned += turn * keep / fps_;
+        at.heading_rad += turn * keep / fps_;
       }
       const int f = std::min(seg.end_frame + k, source.num_frames - 1);
-      const RelativePose walk = relative_pose(source, f, track.placements[static_cast<size_t>(f)]);
-      place(blend(walk, stand, ease(static_cast<float>(k) / static_cast<float>(ease_frames))), at, stop, k);
+      const RelativePose walk = relative_pose(source, f, placement(seg.clip, f));
+      place(blend(walk, stand_, ease(static_cast<float>(k) / static_cast<float>(ease_frames_))), at, stop, k);
     }
-    ++stops_of[static_cast<size_t>(seg.clip)];
+    ++stops_of_[static_cast<size_t>(seg.clip)];
     const int id = add_clip(std::move(stop), kTagLocomotion);
-    graph.transitions.push_back({s, id, kJoinBlendFrames});
-    standing_ends.push_back(id);
-    ++report.stops;
-  };
-  auto add_start = [&](int s) {
-    const Segment seg = graph.segments[static_cast<size_t>(s)];
-    const Clip& source = clips[static_cast<size_t>(seg.clip)];
-    const ClipTrack& track = tracks[static_cast<size_t>(seg.clip)];
-    vec2 v;
-    float turn;
-    velocity_at(track, seg.first_frame, fps, v, turn);
-    Clip start = new_clip(skeleton, "derived_start_" + seg.name, fps, ease_frames + 1);
-    Placement at = track.placements[static_cast<size_t>(seg.first_frame)];
+    graph_.transitions.push_back({s, id, kJoinBlendFrames});
+    standing_ends_.push_back(id);
+    ++report_.stops;
+  }
+
+  // The reverse: from the standing pose into the walk's own frames before the segment, the speed
+  // easing up to the walk's.
+  void add_start(int s) {
+    const Segment seg = graph_.segments[static_cast<size_t>(s)];
+    const Velocity vel = velocity(seg.clip, seg.first_frame);
+    const vec2 v = vel.ground;
+    const float turn = vel.turn;
+    Clip start = new_clip(skeleton_, "derived_start_" + seg.name, fps_, ease_frames_ + 1);
+    Placement at = placement(seg.clip, seg.first_frame);
     float turned = 0.0f;
-    for (int k = ease_frames; k >= 0; --k) {
-      if (k < ease_frames) {
-        const float keep = ease((static_cast<float>(k) + 0.5f) / static_cast<float>(ease_frames));
-        turned -= turn * keep / fps;
-        at.heading_rad -= turn * keep / fps;
-        at.pos_m -= rotate_ground(v, turned) * keep / fps;
+    const Clip& source = clips_[static_cast<size_t>(seg.clip)];
+    for (int k = ease_frames_; k >= 0; --k) {
+      if (k < ease_frames_) {
+        const float keep = ease((static_cast<float>(k) + 0.5f) / static_cast<float>(ease_frames_));
+        turned -= turn * keep / fps_;
+        at.heading_rad -= turn * keep / fps_;
+        at.pos_m -= rotate_ground(v, turned) * keep / fps_;
       }
       // Before the clip's first frame the walk's first pose stands in.
-      const int f = std::max(seg.first_frame - ease_frames + k, 0);
-      const RelativePose walk = relative_pose(source, f, track.placements[static_cast<size_t>(f)]);
-      place(blend(stand, walk, ease(static_cast<float>(k) / static_cast<float>(ease_frames))), at, start, k);
+      const int f = std::max(seg.first_frame - ease_frames_ + k, 0);
+      const RelativePose walk = relative_pose(source, f, placement(seg.clip, f));
+      place(blend(stand_, walk, ease(static_cast<float>(k) / static_cast<float>(ease_frames_))), at, start, k);
     }
-    ++starts_of[static_cast<size_t>(seg.clip)];
+    ++starts_of_[static_cast<size_t>(seg.clip)];
     const int id = add_clip(std::move(start), kTagLocomotion);
-    graph.transitions.push_back({id, s, kJoinBlendFrames});
-    standing_starts.push_back(id);
-    ++report.starts;
-  };
-  auto speed_at = [&](int clip, int frame) {
-    vec2 v;
-    float turn;
-    velocity_at(tracks[static_cast<size_t>(clip)], frame, fps, v, turn);
-    return std::pair<float, float>(glm::length(v), turn);
-  };
-  struct StartCandidate {
-    int segment;
-    float turn;
-  };
-  std::vector<StartCandidate> start_candidates;
-  for (int s = 0; s < captured_segments; ++s) {
-    const Segment seg = graph.segments[static_cast<size_t>(s)];
-    if (seg.clip < 0 || seg.clip >= captured) continue;
-    const float speed = speed_at(seg.clip, seg.end_frame).first;
-    if (speed >= kMinWalkSpeed && speed <= kMaxWalkSpeed) add_stop(s);
-    const auto [start_speed, turn] = speed_at(seg.clip, seg.first_frame);
-    if (seg.first_frame >= ease_frames && start_speed >= kMinWalkSpeed && start_speed <= kMaxWalkSpeed)
-      start_candidates.push_back({s, turn});
+    graph_.transitions.push_back({id, s, kJoinBlendFrames});
+    standing_starts_.push_back(id);
+    ++report_.starts;
   }
-  // Starts into walks of every curvature: candidates spread evenly by turn rate.
-  std::sort(start_candidates.begin(), start_candidates.end(),
-            [](const StartCandidate& a, const StartCandidate& b) { return a.turn < b.turn; });
-  const size_t starts = std::min<size_t>(start_candidates.size(), kMaxStarts);
-  for (size_t i = 0; i < starts; ++i)
-    add_start(start_candidates[starts > 1 ? i * (start_candidates.size() - 1) / (starts - 1) : 0].segment);
-  // A clip left without a stop or a start (a run, a backward walk, a standing take) would drop
-  // out of the graph: it gets one whatever its speed, into its first segment, out of its last.
-  for (int c = 0; c < captured; ++c) {
-    int first = -1, last = -1;
-    for (int s = 0; s < captured_segments; ++s)
-      if (graph.segments[static_cast<size_t>(s)].clip == c) {
-        if (first < 0) first = s;
-        last = s;
-      }
-    if (first < 0) continue;
-    if (starts_of[static_cast<size_t>(c)] == 0) add_start(first);
-    if (stops_of[static_cast<size_t>(c)] == 0) add_stop(last);
-  }
-  // Anything that ends standing may go on to anything that starts standing.
-  for (int from : standing_ends)
-    for (int to : standing_starts) graph.transitions.push_back({from, to, kJoinBlendFrames});
 
-  // Walking turns sharper than the capture's: each walking piece bent both ways. Its ground path
-  // turns at a constant rate on top of the capture's own; the poses relative to the ground stay
-  // the capture's, so a bent piece joins wherever its original does.
-  std::vector<std::vector<int>> bends_of(static_cast<size_t>(graph.num_segments()));
-  for (int s = 0; s < captured_segments; ++s) {
-    const Segment seg = graph.segments[static_cast<size_t>(s)];
-    const ClipTrack& track = tracks[static_cast<size_t>(seg.clip)];
-    const float speed = glm::length(track.placements[static_cast<size_t>(seg.end_frame)].pos_m -
-                                    track.placements[static_cast<size_t>(seg.first_frame)].pos_m) /
-                        (static_cast<float>(seg.num_frames()) / fps);
-    const float own_turn = track.placements[static_cast<size_t>(seg.end_frame)].heading_rad -
-                           track.placements[static_cast<size_t>(seg.first_frame)].heading_rad;
-    if (speed < kMinBendSpeed || speed > kMaxWalkSpeed || std::fabs(own_turn) > radians(30.0f)) continue;
-    for (int sign : {1, -1}) {
-      const Clip& source = clips[static_cast<size_t>(seg.clip)];  // add_clip below may move `clips`
-      const float bend = radians(sign * kBendDegrees);
-      const int frames = seg.num_frames() + 1;
-      Clip bent = new_clip(skeleton, std::string("derived_bend_") + (sign > 0 ? "left_" : "right_") + seg.name, fps, frames);
-      Placement at = track.placements[static_cast<size_t>(seg.first_frame)];
-      for (int k = 0; k < frames; ++k) {
-        const int f = seg.first_frame + k;
-        const Placement& p = track.placements[static_cast<size_t>(f)];
-        const float extra = bend * static_cast<float>(k) / static_cast<float>(frames - 1);
-        if (k > 0) {
-          const vec2 step = p.pos_m - track.placements[static_cast<size_t>(f - 1)].pos_m;
-          at.pos_m += rotate_ground(step, extra - 0.5f * bend / static_cast<float>(frames - 1));
+  // Walking turns sharper than the capture's: each nearly straight walking piece bent both ways.
+  // Its ground path turns at a constant rate on top of the capture's own; the poses relative to
+  // the ground stay the capture's, so a bent piece joins wherever its original does.
+  void add_bends() {
+    std::vector<std::vector<int>> bends_of(static_cast<size_t>(graph_.num_segments()));
+    for (int s = 0; s < captured_segments_; ++s) {
+      const Segment seg = graph_.segments[static_cast<size_t>(s)];
+      const Placement a = placement(seg.clip, seg.first_frame), b = placement(seg.clip, seg.end_frame);
+      const float speed = glm::length(b.pos_m - a.pos_m) / (static_cast<float>(seg.num_frames()) / fps_);
+      if (speed < kMinBendSpeed || speed > kMaxWalkSpeed || std::fabs(b.heading_rad - a.heading_rad) > radians(30.0f))
+        continue;
+      for (int sign : {1, -1}) {
+        const Clip& source = clips_[static_cast<size_t>(seg.clip)];  // add_clip below may move `clips_`
+        const float bend = radians(sign * kBendDegrees);
+        const int frames = seg.num_frames() + 1;
+        Clip bent = new_clip(skeleton_, std::string("derived_bend_") + (sign > 0 ? "left_" : "right_") + seg.name, fps_, frames);
+        Placement at = a;
+        for (int k = 0; k < frames; ++k) {
+          const int f = seg.first_frame + k;
+          const Placement& p = placement(seg.clip, f);
+          const float extra = bend * static_cast<float>(k) / static_cast<float>(frames - 1);
+          if (k > 0) {
+            const vec2 step = p.pos_m - placement(seg.clip, f - 1).pos_m;
+            at.pos_m += rotate_ground(step, extra - 0.5f * bend / static_cast<float>(frames - 1));
+          }
+          at.heading_rad = p.heading_rad + extra;
+          place(relative_pose(source, f, p), at, bent, k);
         }
-        at.heading_rad = p.heading_rad + extra;
-        place(relative_pose(source, f, p), at, bent, k);
+        bends_of[static_cast<size_t>(s)].push_back(add_clip(std::move(bent), seg.tags));
+        ++report_.bends;
       }
-      bends_of[static_cast<size_t>(s)].push_back(add_clip(std::move(bent), seg.tags));
-      ++report.bends;
     }
-  }
-  // Every transition of an original piece, for its bent copies too (in, out, and between bends).
-  const size_t original_transitions = graph.transitions.size();
-  for (size_t t = 0; t < original_transitions; ++t) {
-    const Transition tr = graph.transitions[t];
+    // Every transition of an original piece, for its bent copies too (in, out, and between bends).
+    const size_t original_transitions = graph_.transitions.size();
     const auto variants = [&](int seg) {
       std::vector<int> out{seg};
       if (seg < static_cast<int>(bends_of.size()))
         out.insert(out.end(), bends_of[static_cast<size_t>(seg)].begin(), bends_of[static_cast<size_t>(seg)].end());
       return out;
     };
-    for (int from : variants(tr.from))
-      for (int to : variants(tr.to))
-        if (from != tr.from || to != tr.to) graph.transitions.push_back({from, to, std::max(tr.blend_frames, kJoinBlendFrames)});
+    for (size_t t = 0; t < original_transitions; ++t) {
+      const Transition tr = graph_.transitions[t];
+      for (int from : variants(tr.from))
+        for (int to : variants(tr.to))
+          if (from != tr.from || to != tr.to)
+            graph_.transitions.push_back({from, to, std::max(tr.blend_frames, kJoinBlendFrames)});
+    }
   }
-  graph.finalize();
+
+  int add_clip(Clip clip, uint32_t tag) {
+    const int id = graph_.num_segments();
+    graph_.segments.push_back({clip.name, static_cast<int>(clips_.size()), 0, clip.num_frames - 1, tag});
+    clips_.push_back(std::move(clip));
+    tags_.push_back(tag);
+    return id;
+  }
+
+  const Placement& placement(int clip, int frame) const {
+    return tracks_[static_cast<size_t>(clip)].placements[static_cast<size_t>(frame)];
+  }
+  struct Velocity {
+    vec2 ground;  ///< m/s, clip space
+    float turn;   ///< rad/s
+  };
+  Velocity velocity(int clip, int frame) const {
+    Velocity out{};
+    velocity_at(tracks_[static_cast<size_t>(clip)], frame, fps_, out.ground, out.turn);
+    return out;
+  }
+
+  const Skeleton& skeleton_;
+  std::vector<Clip>& clips_;
+  std::vector<uint32_t>& tags_;
+  MotionGraph& graph_;
+  DerivedMotionReport& report_;
+  const float fps_;
+  const int captured_;           // clips_[0, captured_) are the capture's
+  const int captured_segments_;  // graph_.segments[0, captured_segments_) are theirs
+  const int ease_frames_;        // frames of a stop or a start
+  std::vector<ClipTrack> tracks_;
+  std::vector<int> stops_of_, starts_of_;  // per captured clip
+  RelativePose stand_;
+  std::vector<int> standing_ends_;    // segments that end in the standing pose
+  std::vector<int> standing_starts_;  // segments that begin in it
+};
+
+}  // namespace
+
+void derive_steering_motion(const Skeleton& skeleton, std::vector<Clip>& clips, std::vector<uint32_t>& tags,
+                            MotionGraph& graph, DerivedMotionReport& report) {
+  report = DerivedMotionReport{};
+  if (clips.empty() || skeleton.num_joints() != kCanonJointCount) return;
+  Deriver(skeleton, clips, tags, graph, report).run();
 }
 
 }  // namespace foresight
