@@ -21,6 +21,10 @@ struct Posed {
   vec3 at(int f, int j) const { return pos[static_cast<size_t>(f) * n + j]; }
   vec3 ref_at(int j) const { return at(ref, j); }
   float ref_distance(int a, int b) const { return glm::length(ref_at(a) - ref_at(b)); }
+  // A leaf on top of its parent (an End Site with a zero OFFSET) says nothing: -1.
+  int real_leaf(int leaf) const {
+    return leaf >= 0 && ref_distance(leaf, s.parents[static_cast<size_t>(leaf)]) > 0.01f * height ? leaf : -1;
+  }
 };
 
 // Joints from `from` (exclusive) down to `to` (inclusive), top first; empty if not a descendant.
@@ -101,6 +105,98 @@ int side_from_name(std::string_view name) {
   return 0;
 }
 
+// A chain off the spine: where it branches, its first joint, its farthest leaf and its length.
+struct Branch {
+  int base = -1, root = -1, leaf = -1;
+  float length = 0.0f;
+};
+
+// Per side: thigh, shin, foot, toe, toe end (legs) or clavicle, upper arm, forearm, hand, hand end.
+using Limbs = std::array<std::array<int, 5>, 2>;
+
+// Along a leg's path from the pelvis to its lowest leaf: the ankle, then the most balanced
+// hip/knee pair above it, the toe and the toe's end below it.
+bool leg_joints(const Posed& p, const std::vector<int>& path, std::array<int, 5>& leg) {
+  const float h = p.height;
+  int ankle_index = -1;
+  for (int k = static_cast<int>(path.size()) - 1; k >= 1 && ankle_index < 0; --k) {
+    // The shin: a long bone (a foot's are under a tenth of the body) whose upper end, the knee,
+    // is well off the ground in most frames, standing, running or crouching (a foot's joints
+    // stay near it).
+    const int a = path[static_cast<size_t>(k - 1)], b = path[static_cast<size_t>(k)];
+    std::vector<float> raised;
+    for (int f = 0; f < p.frames; ++f) {
+      float lowest = std::numeric_limits<float>::max();
+      for (int j = 0; j < p.n; ++j) lowest = std::min(lowest, p.at(f, j).y);
+      raised.push_back(p.at(f, a).y - lowest);
+    }
+    std::nth_element(raised.begin(), raised.begin() + raised.size() / 2, raised.end());
+    if (p.ref_distance(a, b) > 0.12f * h && raised[raised.size() / 2] > 0.15f * h) ankle_index = k;
+  }
+  int hip = -1, knee = -1;
+  if (ankle_index < 0 || !balanced_pair(p, path, ankle_index, 0.3f * h, hip, knee)) return false;
+  const int ankle = path[static_cast<size_t>(ankle_index)];
+  const int toe = ankle_index + 1 < static_cast<int>(path.size()) ? path[static_cast<size_t>(ankle_index) + 1] : -1;
+  const int leaf = path.back();
+  leg = {hip, knee, ankle, toe, toe >= 0 && leaf != toe ? p.real_leaf(leaf) : -1};
+  return true;
+}
+
+// Along an arm's path from its branch on the spine to its farthest leaf: the wrist (where the
+// fingers branch, or the chain's last joint), then the most balanced shoulder/elbow pair, the
+// clavicle before the shoulder and the hand's end.
+bool arm_joints(const Posed& p, const std::vector<int>& path, std::array<int, 5>& arm) {
+  const int leaf = path.back();
+  int wrist_index = -1;
+  for (int k = static_cast<int>(path.size()) - 1; k >= 1 && wrist_index < 0; --k)
+    if (p.children[static_cast<size_t>(path[static_cast<size_t>(k)])].size() >= 2) wrist_index = k;
+  if (wrist_index < 0) {
+    wrist_index = static_cast<int>(path.size()) - 1;
+    if (p.s.is_end_site[static_cast<size_t>(leaf)] && wrist_index > 1) --wrist_index;
+  }
+  int shoulder = -1, elbow = -1;
+  if (!balanced_pair(p, path, wrist_index, 0.2f * p.height, shoulder, elbow)) return false;
+  const int shoulder_index = static_cast<int>(std::find(path.begin(), path.end(), shoulder) - path.begin());
+  const int wrist = path[static_cast<size_t>(wrist_index)];
+  arm = {shoulder_index >= 2 ? path[static_cast<size_t>(shoulder_index) - 1] : -1, shoulder, elbow, wrist,
+         leaf != wrist ? p.real_leaf(leaf) : -1};
+  return true;
+}
+
+// Sides: the body faces where the toes point (or where it travels); left = up x forward. Names
+// decide only when the geometry cannot.
+void assign_sides(const Posed& p, Limbs legs, Limbs arms, HumanoidMap& out) {
+  vec3 forward(0.0f);
+  for (const auto& leg : legs)
+    if (leg[3] >= 0)
+      for (int f = 0; f < p.frames; ++f) forward += p.at(f, leg[3]) - p.at(f, leg[2]);
+  forward.y = 0.0f;
+  if (glm::length(forward) < 1e-3f * p.height) forward = p.at(p.frames - 1, out.pelvis) - p.at(0, out.pelvis), forward.y = 0.0f;
+  const vec3 left = glm::cross(vec3(0, 1, 0), forward);
+  auto lateral = [&](int joint, int base) {
+    float sum = 0.0f;
+    for (int f = 0; f < p.frames; ++f) sum += glm::dot(p.at(f, joint) - p.at(f, base), left);
+    return sum;
+  };
+  const float leg_split = lateral(legs[0][0], out.pelvis) - lateral(legs[1][0], out.pelvis);
+  const float arm_split = lateral(arms[0][1], out.chest) - lateral(arms[1][1], out.chest);
+  const float tiny = 1e-3f * p.height * static_cast<float>(p.frames);
+  bool swap_legs = leg_split < 0.0f, swap_arms = arm_split < 0.0f;
+  if (std::fabs(leg_split) < tiny || std::fabs(arm_split) < tiny) {
+    out.sides_from_names = true;
+    swap_legs = side_from_name(p.s.joint_names[static_cast<size_t>(legs[0][0])]) < 0;
+    swap_arms = side_from_name(p.s.joint_names[static_cast<size_t>(arms[0][1])]) < 0;
+  }
+  if (swap_legs) std::swap(legs[0], legs[1]);
+  if (swap_arms) std::swap(arms[0], arms[1]);
+  for (int i = 0; i < 2; ++i) {
+    const auto& l = legs[static_cast<size_t>(i)];
+    const auto& a = arms[static_cast<size_t>(i)];
+    out.thigh[i] = l[0], out.shin[i] = l[1], out.foot[i] = l[2], out.toe[i] = l[3], out.toe_end[i] = l[4];
+    out.clavicle[i] = a[0], out.upper_arm[i] = a[1], out.forearm[i] = a[2], out.hand[i] = a[3], out.hand_end[i] = a[4];
+  }
+}
+
 }  // namespace
 
 std::vector<int> HumanoidMap::used_joints() const {
@@ -169,10 +265,6 @@ bool humanoid_map_find(const Skeleton& s, std::span<const vec3> positions, Human
   spine_path.insert(spine_path.begin(), out.pelvis);
 
   // Arms: the two longest chains branching off the spine above the pelvis.
-  struct Branch {
-    int base = -1, root = -1, leaf = -1;
-    float length = 0.0f;
-  };
   std::vector<Branch> branches;
   for (int leaf : leaves) {
     if (leaf == head_leaf || in_leg(leaf) || !descends(s, leaf, out.pelvis)) continue;
@@ -208,94 +300,25 @@ bool humanoid_map_find(const Skeleton& s, std::span<const vec3> positions, Human
   out.chest = spine_path[static_cast<size_t>(chest_index)];
   out.neck = above.front();
   out.head = above.back();
-  // A leaf on top of its parent (an End Site with a zero OFFSET) says nothing: left out.
-  const auto real_leaf = [&](int leaf) {
-    return leaf >= 0 && p.ref_distance(leaf, s.parents[static_cast<size_t>(leaf)]) > 0.01f * h ? leaf : -1;
-  };
-  out.head_top = head_leaf != out.head ? real_leaf(head_leaf) : -1;
+  out.head_top = head_leaf != out.head ? p.real_leaf(head_leaf) : -1;
   out.spine.assign(spine_path.begin() + 1, spine_path.begin() + chest_index);
 
-  // Legs: ankle, then the most balanced hip/knee pair above it.
-  std::array<std::array<int, 5>, 2> legs{};  // thigh, shin, foot, toe, toe_end
+  // Limbs, then which is left.
+  Limbs legs{}, arms{};
   for (int i = 0; i < 2; ++i) {
     std::vector<int> path = chain(s, out.pelvis, foot_leaf[i]);
     path.insert(path.begin(), out.pelvis);
-    int ankle_index = -1;
-    for (int k = static_cast<int>(path.size()) - 1; k >= 1 && ankle_index < 0; --k) {
-      // The shin: a long bone (a foot's are under a tenth of the body) whose upper end, the
-      // knee, is well off the ground in most frames, standing, running or crouching (a foot's
-      // joints stay near it).
-      const int a = path[static_cast<size_t>(k - 1)], b = path[static_cast<size_t>(k)];
-      std::vector<float> raised;
-      for (int f = 0; f < p.frames; ++f) {
-        float lowest = std::numeric_limits<float>::max();
-        for (int j = 0; j < n; ++j) lowest = std::min(lowest, p.at(f, j).y);
-        raised.push_back(p.at(f, a).y - lowest);
-      }
-      std::nth_element(raised.begin(), raised.begin() + raised.size() / 2, raised.end());
-      if (p.ref_distance(a, b) > 0.12f * h && raised[raised.size() / 2] > 0.15f * h) ankle_index = k;
-    }
-    int hip = -1, knee = -1;
-    if (ankle_index < 0 || !balanced_pair(p, path, ankle_index, 0.3f * h, hip, knee))
+    if (!leg_joints(p, path, legs[static_cast<size_t>(i)]))
       return error = "not a humanoid: no hip, knee and ankle on the leg ending at '" +
                      s.joint_names[static_cast<size_t>(foot_leaf[i])] + "'", false;
-    const int ankle = path[static_cast<size_t>(ankle_index)];
-    const int toe = ankle_index + 1 < static_cast<int>(path.size()) ? path[static_cast<size_t>(ankle_index) + 1] : -1;
-    legs[static_cast<size_t>(i)] = {hip, knee, ankle, toe, toe >= 0 && foot_leaf[i] != toe ? real_leaf(foot_leaf[i]) : -1};
-  }
-  // Arms: wrist (where the fingers branch, or the chain's last joint), then shoulder/elbow.
-  std::array<std::array<int, 5>, 2> arms{};  // clavicle, upper arm, forearm, hand, hand_end
-  for (int i = 0; i < 2; ++i) {
     const Branch& b = branches[static_cast<size_t>(i)];
-    std::vector<int> path = chain(s, b.base, b.leaf);
+    path = chain(s, b.base, b.leaf);
     path.insert(path.begin(), b.base);
-    int wrist_index = -1;
-    for (int k = static_cast<int>(path.size()) - 1; k >= 1 && wrist_index < 0; --k)
-      if (p.children[static_cast<size_t>(path[static_cast<size_t>(k)])].size() >= 2) wrist_index = k;
-    if (wrist_index < 0) {
-      wrist_index = static_cast<int>(path.size()) - 1;
-      if (s.is_end_site[static_cast<size_t>(b.leaf)] && wrist_index > 1) --wrist_index;
-    }
-    int shoulder = -1, elbow = -1;
-    if (!balanced_pair(p, path, wrist_index, 0.2f * h, shoulder, elbow))
+    if (!arm_joints(p, path, arms[static_cast<size_t>(i)]))
       return error = "not a humanoid: no shoulder, elbow and wrist on the arm ending at '" +
                      s.joint_names[static_cast<size_t>(b.leaf)] + "'", false;
-    const int shoulder_index = static_cast<int>(std::find(path.begin(), path.end(), shoulder) - path.begin());
-    const int wrist = path[static_cast<size_t>(wrist_index)];
-    arms[static_cast<size_t>(i)] = {shoulder_index >= 2 ? path[static_cast<size_t>(shoulder_index) - 1] : -1,
-                                    shoulder, elbow, wrist, b.leaf != wrist ? real_leaf(b.leaf) : -1};
   }
-
-  // Sides: the body faces where the toes point (or where it travels); left = up x forward.
-  vec3 forward(0.0f);
-  for (int i = 0; i < 2; ++i)
-    if (legs[static_cast<size_t>(i)][3] >= 0)
-      for (int f = 0; f < p.frames; ++f) forward += p.at(f, legs[static_cast<size_t>(i)][3]) - p.at(f, legs[static_cast<size_t>(i)][2]);
-  forward.y = 0.0f;
-  if (glm::length(forward) < 1e-3f * h) forward = p.at(p.frames - 1, out.pelvis) - p.at(0, out.pelvis), forward.y = 0.0f;
-  const vec3 left = glm::cross(vec3(0, 1, 0), forward);
-  auto lateral = [&](int joint, int base) {
-    float sum = 0.0f;
-    for (int f = 0; f < p.frames; ++f) sum += glm::dot(p.at(f, joint) - p.at(f, base), left);
-    return sum;
-  };
-  const float leg_split = lateral(legs[0][0], out.pelvis) - lateral(legs[1][0], out.pelvis);
-  const float arm_split = lateral(arms[0][1], out.chest) - lateral(arms[1][1], out.chest);
-  const float tiny = 1e-3f * h * static_cast<float>(p.frames);
-  bool swap_legs = leg_split < 0.0f, swap_arms = arm_split < 0.0f;
-  if (std::fabs(leg_split) < tiny || std::fabs(arm_split) < tiny) {
-    out.sides_from_names = true;
-    swap_legs = side_from_name(s.joint_names[static_cast<size_t>(legs[0][0])]) < 0;
-    swap_arms = side_from_name(s.joint_names[static_cast<size_t>(arms[0][1])]) < 0;
-  }
-  if (swap_legs) std::swap(legs[0], legs[1]);
-  if (swap_arms) std::swap(arms[0], arms[1]);
-  for (int i = 0; i < 2; ++i) {
-    const auto& l = legs[static_cast<size_t>(i)];
-    const auto& a = arms[static_cast<size_t>(i)];
-    out.thigh[i] = l[0], out.shin[i] = l[1], out.foot[i] = l[2], out.toe[i] = l[3], out.toe_end[i] = l[4];
-    out.clavicle[i] = a[0], out.upper_arm[i] = a[1], out.forearm[i] = a[2], out.hand[i] = a[3], out.hand_end[i] = a[4];
-  }
+  assign_sides(p, legs, arms, out);
   return true;
 }
 
