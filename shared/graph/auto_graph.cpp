@@ -93,6 +93,48 @@ bool cut_fits(const std::set<int>& cuts, int frame, int min_gap) {
   return true;
 }
 
+// Clip joins: a take's end continuing into a take's start. Kovar's windows look after the cut,
+// so a clip's last frames never leave it; takes cut into cycles or single moves (walk_l then
+// walk_r, a crouch-walk step after step) are joined where A's last pose, carried on at its last
+// velocity, matches B's first two frames under the ground alignment, with the same threshold.
+void add_clip_joins(const Skeleton& skeleton, std::span<const Clip> clips, const std::vector<int>& joints,
+                    const AutoGraphOptions& o, const std::vector<std::vector<int>>& segment_ending_at,
+                    const std::vector<std::vector<int>>& segment_starting_at, MotionGraph& g,
+                    AutoGraphReport& rep) {
+  std::vector<WindowCloud> ends(clips.size()), starts(clips.size());
+  std::vector<vec3> pos;
+  const int n = skeleton.num_joints();
+  for (size_t c = 0; c < clips.size(); ++c) {
+    if (clips[c].num_frames < 2) continue;
+    fk_clip_positions(skeleton, clips[c], pos);
+    const int last = clips[c].num_frames - 1;
+    WindowCloud e, b;
+    for (int k = 0; k < 2; ++k)
+      for (int j : joints) {
+        const vec3 end = pos[static_cast<size_t>(last) * n + j];
+        const vec3 before = pos[static_cast<size_t>(last - 1) * n + j];
+        const vec3 p = k == 0 ? end : end + (end - before);  // the next frame, had it gone on
+        e.u.push_back(p.x), e.v.push_back(p.z), e.y.push_back(p.y);
+        const vec3 q = pos[static_cast<size_t>(k) * n + j];
+        b.u.push_back(q.x), b.v.push_back(q.z), b.y.push_back(q.y);
+      }
+    centre(e);
+    centre(b);
+    ends[c] = std::move(e);
+    starts[c] = std::move(b);
+  }
+  const float threshold = o.threshold_rms_m * o.threshold_rms_m * static_cast<float>(2 * joints.size());
+  for (size_t a = 0; a < clips.size(); ++a)
+    for (size_t b = 0; b < clips.size(); ++b) {
+      if (ends[a].u.empty() || starts[b].u.empty()) continue;
+      const int from = segment_ending_at[a][static_cast<size_t>(clips[a].num_frames - 1)];
+      const int to = segment_starting_at[b][0];
+      if (from < 0 || to < 0 || aligned_distance(ends[a], starts[b]) > threshold) continue;
+      g.transitions.push_back({from, to, kClipJoinBlendFrames});
+      ++rep.clip_joins;
+    }
+}
+
 }  // namespace
 
 bool graph_build_automatic(const Skeleton& skeleton, std::span<const Clip> clips,
@@ -197,44 +239,7 @@ bool graph_build_automatic(const Skeleton& skeleton, std::span<const Clip> clips
     const int to = segment_starting_at[t.clip_b][static_cast<size_t>(t.frame_b)];
     if (from >= 0 && to >= 0) g.transitions.push_back({from, to, o.window_frames});
   }
-  // Clip joins: a take's end continuing into a take's start. Kovar's windows look after the cut,
-  // so a clip's last frames never leave it; takes cut into cycles or single moves (walk_l then
-  // walk_r, a crouch-walk step after step) are joined here where A's last pose, carried on at its
-  // last velocity, matches B's first two frames under the ground alignment, with the same threshold.
-  {
-    std::vector<WindowCloud> ends(clips.size()), starts(clips.size());
-    std::vector<vec3> pos;
-    const int n = skeleton.num_joints();
-    for (size_t c = 0; c < clips.size(); ++c) {
-      if (clips[c].num_frames < 2) continue;
-      fk_clip_positions(skeleton, clips[c], pos);
-      const int last = clips[c].num_frames - 1;
-      WindowCloud e, b;
-      for (int k = 0; k < 2; ++k)
-        for (int j : joints) {
-          const vec3 end = pos[static_cast<size_t>(last) * n + j];
-          const vec3 before = pos[static_cast<size_t>(last - 1) * n + j];
-          const vec3 p = k == 0 ? end : end + (end - before);  // the next frame, had it gone on
-          e.u.push_back(p.x), e.v.push_back(p.z), e.y.push_back(p.y);
-          const vec3 q = pos[static_cast<size_t>(k) * n + j];
-          b.u.push_back(q.x), b.v.push_back(q.z), b.y.push_back(q.y);
-        }
-      centre(e);
-      centre(b);
-      ends[c] = std::move(e);
-      starts[c] = std::move(b);
-    }
-    const float join_threshold = o.threshold_rms_m * o.threshold_rms_m * static_cast<float>(2 * joints.size());
-    for (size_t a = 0; a < clips.size(); ++a)
-      for (size_t b = 0; b < clips.size(); ++b) {
-        if (ends[a].u.empty() || starts[b].u.empty()) continue;
-        const int from = segment_ending_at[a][static_cast<size_t>(clips[a].num_frames - 1)];
-        const int to = segment_starting_at[b][0];
-        if (from < 0 || to < 0 || aligned_distance(ends[a], starts[b]) > join_threshold) continue;
-        g.transitions.push_back({from, to, kClipJoinBlendFrames});
-        ++rep.clip_joins;
-      }
-  }
+  add_clip_joins(skeleton, clips, joints, o, segment_ending_at, segment_starting_at, g, rep);
   g.finalize();
   rep.segments_before_prune = g.num_segments();
   rep.edges_before_prune = static_cast<int>(g.transitions.size());

@@ -6,7 +6,7 @@
 // avatar freezes (issue 16: 3-8 m walked in 60 s). So, at library build time:
 //  * a standing pose: the capture's stillest upright frame (pelvis and both ankles slowest), the
 //    most compact of those (the idle's body disc must fit wherever the avatar stops);
-//  * an idle loop: that pose held for a second (`derived_idle`);
+//  * an idle loop: that pose held for half a second (`derived_idle`);
 //  * turns on the spot, both ways, 45 / 90 / 135 degrees: the standing pose turned about the
 //    pelvis, eased in and out, in two steps with the feet planted (the foot on the turning side
 //    steps to its place in the new facing, then the other; two-bone leg IK keeps a foot on the
@@ -32,8 +32,9 @@ namespace foresight {
 
 struct DerivedMotionReport {
   /// What the capture itself has (detected from its root tracks): a stand of a second or more
-  /// (under 0.15 m/s, under 10 degrees), a turn on the spot (travelling under 0.3 m/s,
-  /// 30 degrees or more within a second or a shorter clip), a stop or a start (between 0.8 m/s and under 0.15 m/s within 1.5 s).
+  /// (under 0.15 m/s, under 10 degrees), a turn on the spot (travelling under 0.3 m/s, 30 degrees
+  /// or more within a second or a shorter clip), a stop or a start (between 0.8 m/s and under
+  /// 0.15 m/s within 1.5 s).
   bool captured_idle = false, captured_turn_on_spot = false, captured_stop = false, captured_start = false;
   std::string standing_clip;      ///< Where the standing pose comes from.
   int standing_frame = -1;
