@@ -506,9 +506,9 @@ void choose_scale(const BvhImportOptions& options, BvhImportReport& r) {
 
 // What the import made of a humanoid: its size, where its feet are, warnings, and which joint
 // became which canonical joint.
-void report_humanoid(const Skeleton& s, const Clip& clip, const HumanoidMap& roles, BvhImportReport& r) {
-  std::vector<vec3> all;
-  fk_clip_positions(s, clip, all);
+// `all`: the clip's FK positions, [frame * joints + joint].
+void report_humanoid(const Skeleton& s, const Clip& clip, std::span<const vec3> all, const HumanoidMap& roles,
+                     BvhImportReport& r) {
   const std::vector<vec3> sample = [&] {
     std::vector<vec3> out;
     const int samples = std::min(16, clip.num_frames);
@@ -564,10 +564,8 @@ void report_humanoid(const Skeleton& s, const Clip& clip, const HumanoidMap& rol
 
 // Step 6: the clip on the canonical skeleton with the capture's proportions, measured in its
 // tallest frame (the limbs read straightest there).
-void to_canonical(const Skeleton& source, const Clip& clip, const HumanoidMap& roles, Skeleton& skeleton,
-                  Clip& out) {
-  std::vector<vec3> all;
-  fk_clip_positions(source, clip, all);
+void to_canonical(const Skeleton& source, const Clip& clip, std::span<const vec3> all, const HumanoidMap& roles,
+                  Skeleton& skeleton, Clip& out) {
   const int n = source.num_joints();
   auto frame = [&](int f) { return std::span<const vec3>(all.data() + static_cast<size_t>(f) * n, static_cast<size_t>(n)); };
   int tallest = 0;
@@ -638,9 +636,13 @@ bool clip_from_bvh(const BvhDocument& doc, std::string_view name, const BvhImpor
     out.num_joints = m.num_joints();
     out.local_pos_m = std::move(m.pos);
     out.local_rot = std::move(m.rot);
-    if (r.humanoid) report_humanoid(source, out, roles, r);
+    std::vector<vec3> all;  // FK of the whole clip, for the report and the canonical skeleton
+    if (r.humanoid) {  // (canonical implies humanoid: refused above otherwise)
+      fk_clip_positions(source, out, all);
+      report_humanoid(source, out, all, roles, r);
+    }
     if (options.canonical) {
-      to_canonical(source, out, roles, skeleton, clip);  // step 6
+      to_canonical(source, out, all, roles, skeleton, clip);  // step 6
     } else {
       skeleton = std::move(source);
       clip = std::move(out);

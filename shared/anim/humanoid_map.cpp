@@ -16,6 +16,7 @@ struct Posed {
   int n = 0, frames = 0, ref = 0;  // ref: the tallest frame (straightest limbs)
   std::vector<float> mean_y;
   std::vector<std::vector<int>> children;
+  std::vector<float> lowest;  // per frame: the lowest joint's height (the ground under the body)
   float height = 0.0f;
 
   vec3 at(int f, int j) const { return pos[static_cast<size_t>(f) * n + j]; }
@@ -125,11 +126,7 @@ bool leg_joints(const Posed& p, const std::vector<int>& path, std::array<int, 5>
     // stay near it).
     const int a = path[static_cast<size_t>(k - 1)], b = path[static_cast<size_t>(k)];
     std::vector<float> raised;
-    for (int f = 0; f < p.frames; ++f) {
-      float lowest = std::numeric_limits<float>::max();
-      for (int j = 0; j < p.n; ++j) lowest = std::min(lowest, p.at(f, j).y);
-      raised.push_back(p.at(f, a).y - lowest);
-    }
+    for (int f = 0; f < p.frames; ++f) raised.push_back(p.at(f, a).y - p.lowest[static_cast<size_t>(f)]);
     std::nth_element(raised.begin(), raised.begin() + raised.size() / 2, raised.end());
     if (p.ref_distance(a, b) > 0.12f * h && raised[raised.size() / 2] > 0.15f * h) ankle_index = k;
   }
@@ -221,7 +218,7 @@ bool humanoid_map_find(const Skeleton& s, std::span<const vec3> positions, Human
   for (const vec3& v : positions)
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
       return error = "not a humanoid: joint positions beyond float range", false;
-  Posed p{s, positions, n, static_cast<int>(positions.size() / static_cast<size_t>(n)), 0, {}, {}, 0.0f};
+  Posed p{s, positions, n, static_cast<int>(positions.size() / static_cast<size_t>(n)), 0, {}, {}, {}, 0.0f};
   p.children.resize(static_cast<size_t>(n));
   for (int j = 1; j < n; ++j) p.children[static_cast<size_t>(s.parents[static_cast<size_t>(j)])].push_back(j);
   p.mean_y.assign(static_cast<size_t>(n), 0.0f);
@@ -232,6 +229,7 @@ bool humanoid_map_find(const Skeleton& s, std::span<const vec3> positions, Human
       p.mean_y[static_cast<size_t>(j)] += y / static_cast<float>(p.frames);
       lo = std::min(lo, y), hi = std::max(hi, y);
     }
+    p.lowest.push_back(lo);
     if (hi - lo > p.height) p.height = hi - lo, p.ref = f;
   }
   if (!(p.height > 0.0f)) return error = "not a humanoid: the body has no height", false;
