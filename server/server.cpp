@@ -834,7 +834,8 @@ void Server::advance(TickRecord& record) {
   const int64_t due = frames_due(tick_, fps, config_.tick_hz) - frames_due(tick_ - 1, fps, config_.tick_hz);
   for (const auto& p : players_) {
     for (int64_t f = 0; f < due && p->avatar; ++f) {
-      const ReservationVeto veto(reservations_, library_, static_cast<int>(p->avatar_id));
+      const ReservationVeto veto(reservations_, library_, static_cast<int>(p->avatar_id),
+                                 p->avatar->fallback_segment());
       const AvatarStepResult r = p->avatar->step(&veto);
       if (r.fallback) ++counters_.fallbacks;
       if (r.steered) ++counters_.steered_frames;
@@ -940,7 +941,7 @@ void Server::check_contacts() {
       contact_bodies_.push_back(place(library_.volumes(s.segment)[static_cast<size_t>(s.frame)], s.segment_start));
     }
   }
-  if (any_discs_overlap(contact_bodies_)) ++counters_.avatar_contacts;
+  if (any_footprints_overlap(contact_bodies_)) ++counters_.avatar_contacts;
 }
 
 }  // namespace foresight::server

@@ -136,6 +136,12 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   lib.segment_motion.clear();
   lib.segment_shapes.clear();
   std::vector<std::vector<BodyVolume>> volumes(lib.graph.segments.size());
+  // The first frames of a segment are shown blended from any predecessor: their volumes are
+  // fitted to the joints of every pose shown there (clip and blends), collected here.
+  std::vector<int> blended_frames(lib.graph.segments.size(), 0);
+  for (const Transition& tr : lib.graph.transitions)
+    blended_frames[static_cast<size_t>(tr.to)] = std::max(blended_frames[static_cast<size_t>(tr.to)], tr.blend_frames);
+  std::vector<std::vector<std::vector<vec3>>> shown_joints(lib.graph.segments.size());
   std::vector<vec3> global(static_cast<size_t>(n));
   std::vector<quat> global_rot(static_cast<size_t>(n));
   for (size_t si = 0; si < lib.graph.segments.size(); ++si) {
@@ -148,6 +154,7 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
       fk_pose(lib.skeleton, clip.frame_pos(f), clip.frame_rot(f), global, global_rot);
       for (vec3& p : global) p = to_local.apply(p);
       volumes[si].push_back(body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
+      if (f - s.first_frame < blended_frames[si]) shown_joints[si].push_back(global);
     }
   }
 
@@ -166,24 +173,38 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   }
 
   // The poses shown while a transition blends out differ from the clip's by up to the join's gap
-  // (about 1.5 cm): each blended frame's volume is grown to hold every incoming blend's pose too,
-  // so what the tree checks covers what is shown (shown_pose_collides), not only the clip.
+  // (about 1.5 cm): each blended frame's volume is fitted to every incoming blend's pose too, so
+  // what the tree checks covers what is shown (shown_pose_collides), not only the clip. Fitting
+  // one capsule to all the joints keeps it as narrow as the poses (two capsules fitted apart may
+  // lie at different angles, and a capsule around both is wider than either).
   Pose pose;
   for (size_t t = 0; t < lib.graph.transitions.size(); ++t) {
     const Transition& tr = lib.graph.transitions[t];
-    std::vector<BodyVolume>& frames = volumes[static_cast<size_t>(tr.to)];
-    const int blended = std::min(tr.blend_frames, static_cast<int>(frames.size()));
+    auto& shown = shown_joints[static_cast<size_t>(tr.to)];
+    const int blended = std::min(tr.blend_frames, static_cast<int>(shown.size()));
     for (int k = 0; k < blended; ++k) {
       motion_library_sample(lib, tr.to, k, Placement{}, static_cast<int>(t), pose);
       fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, global, global_rot);
-      frames[static_cast<size_t>(k)] = enclosing_volume(
-          frames[static_cast<size_t>(k)], body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
+      shown[static_cast<size_t>(k)].insert(shown[static_cast<size_t>(k)].end(), global.begin(), global.end());
     }
   }
+  for (size_t si = 0; si < shown_joints.size(); ++si)
+    for (size_t k = 0; k < shown_joints[si].size(); ++k)
+      volumes[si][k] = body_volume_from_pose(shown_joints[si][k], lib.body_margin_m, lib.head_top_margin_m);
   for (const std::vector<BodyVolume>& frames : volumes) lib.segment_shapes.push_back(make_segment_shape(frames));
 
   lib.content_hash = content_hash_of(lib);
   return true;
+}
+
+SegmentBody segment_body(const MotionLibrary& lib, int segment) {
+  SegmentBody b;
+  for (const BodyVolume& v : lib.volumes(segment)) {
+    b.width_m = std::max(b.width_m, 2.0f * v.radius_m);
+    b.length_m = std::max(b.length_m, 2.0f * v.reach_m());
+    b.height_m = std::max(b.height_m, v.y_max_m - v.y_min_m);
+  }
+  return b;
 }
 
 Placement motion_library_root_at(const MotionLibrary& lib, int segment, int frame,

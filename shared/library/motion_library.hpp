@@ -70,6 +70,16 @@ bool motion_library_compile(MotionLibrary& library, std::string& error);
 void motion_library_sample(const MotionLibrary& library, int segment, int frame,
                            const Placement& segment_start, int incoming_transition, Pose& out);
 
+/// How much room a segment's body needs: the widest footprint across its long axis (2 x radius),
+/// the longest along it, the tallest frame above its feet. What a level designer compares with
+/// doorways, gaps and beams (docs/SCENES.md).
+struct SegmentBody {
+  float width_m = 0.0f;
+  float length_m = 0.0f;
+  float height_m = 0.0f;
+};
+SegmentBody segment_body(const MotionLibrary& library, int segment);
+
 /// World placement of the root at `frame` of a segment placed at `segment_start`.
 Placement motion_library_root_at(const MotionLibrary& library, int segment, int frame,
                                  const Placement& segment_start);

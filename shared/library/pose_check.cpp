@@ -4,6 +4,7 @@
 #include "world/collision_check.hpp"
 #include "world/terrain.hpp"
 
+#include <algorithm>
 #include <cctype>
 
 namespace foresight {
@@ -28,14 +29,22 @@ bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& wor
           scratch.joint_rot);
   const Placement to_local = state.segment_start.inverse();
   for (vec3& p : scratch.joint_pos_m) p = to_local.apply(p);
-  BodyVolume volume = place(body_volume_from_pose(scratch.joint_pos_m, library.body_margin_m - tolerance_m,
-                                                  library.head_top_margin_m),
-                            state.segment_start);
+  const float flesh_m = std::max(library.body_margin_m - tolerance_m, 0.0f);
+  BodyVolume body = place(body_volume_from_pose(scratch.joint_pos_m, flesh_m, library.head_top_margin_m),
+                          state.segment_start);
   float ground_m = 0.0f;
   ground_height_at(world, state.segment_start.pos_m, ground_m);
-  volume.y_min_m += ground_m;
-  volume.y_max_m += ground_m;
-  return frame_collides(world, volume, ground_m);
+  body.y_min_m += ground_m;
+  body.y_max_m += ground_m;
+  // Bounds and the terrain rule at the body's centre, as the tree checks them.
+  if (frame_collides(world, BodyVolume{body.center_m, 0.0f, body.y_min_m, body.y_max_m}, ground_m)) return true;
+  // The flesh itself: every joint grown by the margin, over the body's heights. Every precomputed
+  // capsule holds these discs, whatever angle it was fitted at.
+  for (const vec3& p : scratch.joint_pos_m) {
+    const vec2 at = state.segment_start.apply(ground(p));
+    if (volume_hits_boxes(world, BodyVolume{at, flesh_m, body.y_min_m, body.y_max_m})) return true;
+  }
+  return false;
 }
 
 }  // namespace foresight

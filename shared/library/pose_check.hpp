@@ -21,10 +21,10 @@ struct PoseCheckScratch {
   std::vector<quat> joint_rot;
 };
 
-/// True when the shown pose of `state` overlaps the scene. The bounding cylinder is fitted in the
-/// segment's own frame, exactly as motion_library_compile fits the precomputed volumes, then
-/// placed (a disc fitted to a world-axis box would differ at 45 degree headings); the clip plays
-/// at the ground height under its segment's start. `tolerance_m` shrinks the body sideways: an
+/// True when the shown pose of `state` overlaps the scene: any joint grown by the library's flesh
+/// margin, over the body's height range, overlaps a box, or the body's centre (the capsule the
+/// library fits, in the segment's own frame) breaks the bounds or the terrain rule. The clip
+/// plays at the ground height under its segment's start. `tolerance_m` shrinks the flesh: an
 /// observer that rebuilds the pose from quantised snapshots (1 mm) passes 1 cm, so a body that
 /// grazes a wall on the server is not counted as inside it.
 bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& world,

@@ -8,22 +8,22 @@ namespace foresight {
 void Reservations::configure(const GroundRect& bounds, float cell_m, float clearance_m) {
   cell_m_ = std::max(cell_m, 0.25f);
   clearance_m_ = clearance_m;
-  // One ring of cells past the bounds: avatars stand inside, but their discs may poke out.
+  // One ring of cells past the bounds: avatars stand inside, but their footprints may poke out.
   origin_m_ = bounds.min_m - vec2(cell_m_);
   const vec2 size = bounds.max_m - bounds.min_m + vec2(2.0f * cell_m_);
   count_x_ = std::clamp(static_cast<int>(std::ceil(size.x / cell_m_)), 1, 4096);
   count_z_ = std::clamp(static_cast<int>(std::ceil(size.y / cell_m_)), 1, 4096);
   cells_.assign(static_cast<size_t>(count_x_) * static_cast<size_t>(count_z_), {});
   touched_.clear();
-  discs_.clear();
-  max_radius_m_ = 0.0f;
+  bodies_.clear();
+  max_reach_m_ = 0.0f;
 }
 
 void Reservations::clear() {
   for (int c : touched_) cells_[static_cast<size_t>(c)].clear();
   touched_.clear();
-  discs_.clear();
-  max_radius_m_ = 0.0f;
+  bodies_.clear();
+  max_reach_m_ = 0.0f;
 }
 
 int Reservations::cell_of(vec2 p) const {
@@ -40,28 +40,25 @@ void Reservations::add(int owner, const MotionLibrary& library, int segment, int
     const int cell = cell_of(v.center_m);
     auto& list = cells_[static_cast<size_t>(cell)];
     if (list.empty()) touched_.push_back(cell);
-    list.push_back(static_cast<int>(discs_.size()));
-    discs_.push_back({v.center_m, v.radius_m, owner});
-    max_radius_m_ = std::max(max_radius_m_, v.radius_m);
+    list.push_back(static_cast<int>(bodies_.size()));
+    bodies_.push_back({v, owner});
+    max_reach_m_ = std::max(max_reach_m_, v.reach_m());
   }
 }
 
 bool Reservations::blocks(int self, const MotionLibrary& library, int segment,
                           const Placement& start) const {
-  if (discs_.empty()) return false;
+  if (bodies_.empty()) return false;
   for (const BodyVolume& local : library.volumes(segment)) {
     const BodyVolume v = place(local, start);
-    const float reach = v.radius_m + max_radius_m_ + clearance_m_;
+    const float reach = v.reach_m() + max_reach_m_ + clearance_m_;
     const int x0 = cell_of(v.center_m - vec2(reach)) % count_x_, z0 = cell_of(v.center_m - vec2(reach)) / count_x_;
     const int x1 = cell_of(v.center_m + vec2(reach)) % count_x_, z1 = cell_of(v.center_m + vec2(reach)) / count_x_;
     for (int z = z0; z <= z1; ++z)
       for (int x = x0; x <= x1; ++x)
         for (int i : cells_[static_cast<size_t>(z * count_x_ + x)]) {
-          const Disc& d = discs_[static_cast<size_t>(i)];
-          if (d.owner == self) continue;
-          const float r = v.radius_m + d.radius_m + clearance_m_;
-          const vec2 delta = d.center_m - v.center_m;
-          if (glm::dot(delta, delta) < r * r) return true;
+          const Reserved& d = bodies_[static_cast<size_t>(i)];
+          if (d.owner != self && footprints_overlap(v, d.volume, clearance_m_)) return true;
         }
   }
   return false;

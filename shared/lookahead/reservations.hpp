@@ -22,19 +22,18 @@ namespace foresight {
 
 class Reservations {
  public:
-  /// Covers `bounds` with cells of `cell_m`; `clearance_m` is added between two bodies' discs.
+  /// Covers `bounds` with cells of `cell_m`; `clearance_m` is kept between two bodies' footprints.
   void configure(const GroundRect& bounds, float cell_m = 1.0f, float clearance_m = 0.05f);
   void clear();
   /// Reserves frames [from_frame, end] of `segment` placed at `start` for avatar `owner`.
   void add(int owner, const MotionLibrary& library, int segment, int from_frame, const Placement& start);
-  /// True when some frame of `segment` placed at `start` overlaps a disc reserved by anyone but
-  /// `self`.
+  /// True when some frame of `segment` placed at `start` overlaps a footprint reserved by anyone
+  /// but `self`.
   bool blocks(int self, const MotionLibrary& library, int segment, const Placement& start) const;
 
  private:
-  struct Disc {
-    vec2 center_m;
-    float radius_m;
+  struct Reserved {
+    BodyVolume volume;  ///< Placed; heights unused.
     int owner;
   };
   int cell_of(vec2 p) const;
@@ -43,25 +42,32 @@ class Reservations {
   float cell_m_ = 1.0f;
   float clearance_m_ = 0.05f;
   int count_x_ = 1, count_z_ = 1;
-  float max_radius_m_ = 0.0f;
-  std::vector<Disc> discs_;
-  std::vector<std::vector<int>> cells_;  ///< Disc indices per cell (by disc centre).
+  float max_reach_m_ = 0.0f;
+  std::vector<Reserved> bodies_;
+  std::vector<std::vector<int>> cells_;  ///< Indices into bodies_ per cell (by footprint centre).
   std::vector<int> touched_;             ///< Cells with entries, for clear().
 };
 
-/// Reservations seen by one avatar, as a veto for LookaheadAvatar::step().
+/// Reservations seen by one avatar, as a veto for LookaheadAvatar::step(). With a `stand_segment`
+/// (the avatar's idle fallback), a segment is also vetoed when standing at its end would overlap
+/// someone's reservation: an avatar then never walks so close to another that it can neither go
+/// on nor stop (bodies as narrow as people let a walker reach a standing one mid-stride, where
+/// only holding the pose was left).
 class ReservationVeto final : public ChildVeto {
  public:
-  ReservationVeto(const Reservations& r, const MotionLibrary& library, int self)
-      : r_(r), library_(library), self_(self) {}
+  ReservationVeto(const Reservations& r, const MotionLibrary& library, int self, int stand_segment = -1)
+      : r_(r), library_(library), self_(self), stand_segment_(stand_segment) {}
   bool blocks(int segment, const Placement& start) const override {
-    return r_.blocks(self_, library_, segment, start);
+    if (r_.blocks(self_, library_, segment, start)) return true;
+    return stand_segment_ >= 0 &&
+           r_.blocks(self_, library_, stand_segment_, start.compose(library_.segment_motion[segment].end));
   }
 
  private:
   const Reservations& r_;
   const MotionLibrary& library_;
   int self_;
+  int stand_segment_;
 };
 
 }  // namespace foresight

@@ -14,20 +14,27 @@ bool in_bounds(const GroundRect& b, float x, float z) {
   return x >= b.min_m.x && x <= b.max_m.x && z >= b.min_m.y && z <= b.max_m.y;
 }
 
-bool hits_any(const CellBox* box, std::uint32_t n, float x, float z, float r, float y0, float y1) {
+/// A frame's footprint, placed: capsule centre, half axis, radius, height range.
+struct Footprint {
+  float x, z, ax, az, r, y0, y1;
+};
+
+bool hits_any(const CellBox* box, std::uint32_t n, const Footprint& f) {
   for (const CellBox* end = box + n; box != end; ++box) {
     // Most boxes near a body are walls (always in the y range), so the plane test goes first.
-    if (disc_overlaps_rect(x, z, r, box->min_x, box->min_z, box->max_x, box->max_z) &&
-        y_ranges_overlap(y0, y1, box->min_y, box->max_y))
+    if (capsule_overlaps_rect(f.x, f.z, f.ax, f.az, f.r, box->min_x, box->min_z, box->max_x, box->max_z) &&
+        y_ranges_overlap(f.y0, f.y1, box->min_y, box->max_y))
       return true;
   }
   return false;
 }
 
-/// Discs larger than fast_radius_m: boxes are registered fast_radius_m around themselves, so a box
-/// within r of the centre is registered in some cell within r - fast_radius_m of it.
-bool hits_any_wide(const CollisionWorld& w, float x, float z, float r, float y0, float y1) {
-  const float extra = r - w.config.fast_radius_m;
+/// Footprints reaching further than fast_radius_m: boxes are registered fast_radius_m around
+/// themselves, so a box within `reach` of the centre is registered in some cell within
+/// reach - fast_radius_m of it.
+bool hits_any_wide(const CollisionWorld& w, const Footprint& f, float reach) {
+  const float extra = reach - w.config.fast_radius_m;
+  const float x = f.x, z = f.z;
   const auto cell = [&](float v, float origin, int n) {
     return static_cast<int>(
         std::clamp(std::floor((v - origin) * w.inv_cell_m), 0.0f, static_cast<float>(n - 1)));
@@ -39,28 +46,43 @@ bool hits_any_wide(const CollisionWorld& w, float x, float z, float r, float y0,
   for (int iz = z0; iz <= z1; ++iz) {
     for (int ix = x0; ix <= x1; ++ix) {
       const GridCell& c = w.cells[w.cell_index(ix, iz)];
-      if (hits_any(w.cell_boxes.data() + c.first_box, c.num_boxes, x, z, r, y0, y1)) return true;
+      if (hits_any(w.cell_boxes.data() + c.first_box, c.num_boxes, f)) return true;
     }
   }
   return false;
 }
 
+/// The box part of the per-frame test, for a footprint whose centre lies in the bounds, in `cell`.
+inline bool boxes_hit(const CollisionWorld& w, const Footprint& f, const GridCell& cell) {
+  // Footprint within fast_radius_m of its centre (|half axis| + r <= fast): one cell holds every box.
+  const float core = w.config.fast_radius_m - f.r, half2 = f.ax * f.ax + f.az * f.az;
+  if (core >= 0.0f && half2 <= core * core)
+    return hits_any(w.cell_boxes.data() + cell.first_box, cell.num_boxes, f);
+  const float reach = std::sqrt(half2) + f.r;
+  if (!std::isfinite(reach)) return true;
+  return hits_any_wide(w, f, reach);
+}
+
 /// The whole per-frame test. ground_lo/hi: the accepted ground range (reference -+ tolerance).
-inline bool frame_blocked(const CollisionWorld& w, float x, float z, float r, float y0, float y1,
-                          float ground_lo, float ground_hi) {
-  if (!in_bounds(w.bounds, x, z)) return true;
-  const int ci = w.cell_of({x, z});
+inline bool frame_blocked(const CollisionWorld& w, const Footprint& f, float ground_lo, float ground_hi) {
+  if (!in_bounds(w.bounds, f.x, f.z)) return true;
+  const int ci = w.cell_of({f.x, f.z});
   const GridCell& cell = w.cells[static_cast<std::size_t>(ci)];
   // Fast path: every ground height in the cell is acceptable. Holes make lo/hi -inf/+inf.
   if (!(cell.ground_lo_m >= ground_lo && cell.ground_hi_m <= ground_hi)) {
     float g = 0.0f;
-    if (!ground_height_in_cell(w, ci, {x, z}, g) || !(g >= ground_lo && g <= ground_hi))
+    if (!ground_height_in_cell(w, ci, {f.x, f.z}, g) || !(g >= ground_lo && g <= ground_hi))
       return true;
   }
-  if (r <= w.config.fast_radius_m)
-    return hits_any(w.cell_boxes.data() + cell.first_box, cell.num_boxes, x, z, r, y0, y1);
-  if (!std::isfinite(r)) return true;
-  return hits_any_wide(w, x, z, r, y0, y1);
+  return boxes_hit(w, f, cell);
+}
+
+/// A segment-local frame placed at (c, sn, pos) = (cos, sin of the heading, position), its heights
+/// raised by h0. Same arithmetic as Placement::apply / rotate_ground.
+inline Footprint placed(const BodyVolume& v, float c, float sn, vec2 pos, float h0) {
+  return {c * v.center_m.x + sn * v.center_m.y + pos.x, -sn * v.center_m.x + c * v.center_m.y + pos.y,
+          c * v.half_axis_m.x + sn * v.half_axis_m.y, -sn * v.half_axis_m.x + c * v.half_axis_m.y,
+          v.radius_m, v.y_min_m + h0, v.y_max_m + h0};
 }
 
 /// The placed sweep disc lies where nothing can be hit: every frame is free, without testing any.
@@ -78,8 +100,15 @@ inline bool sweep_clear(const CollisionWorld& w, const SegmentCollisionShape& s,
 bool frame_collides(const CollisionWorld& world, const BodyVolume& v, float ground_ref_y_m) {
   if (world.empty()) return true;
   const float tol = world.config.ground_tolerance_m;
-  return frame_blocked(world, v.center_m.x, v.center_m.y, v.radius_m, v.y_min_m, v.y_max_m,
-                       ground_ref_y_m - tol, ground_ref_y_m + tol);
+  return frame_blocked(world, placed(v, 1.0f, 0.0f, vec2(0.0f), 0.0f), ground_ref_y_m - tol,
+                       ground_ref_y_m + tol);
+}
+
+bool volume_hits_boxes(const CollisionWorld& world, const BodyVolume& v) {
+  if (world.empty()) return true;
+  const Footprint f = placed(v, 1.0f, 0.0f, vec2(0.0f), 0.0f);
+  if (!in_bounds(world.bounds, f.x, f.z)) return true;
+  return boxes_hit(world, f, world.cells[static_cast<std::size_t>(world.cell_of({f.x, f.z}))]);
 }
 
 bool segment_feasible(const CollisionWorld& world, const SegmentCollisionShape& shape,
@@ -108,10 +137,7 @@ bool segment_feasible(const CollisionWorld& world, const SegmentCollisionShape& 
   bool feasible = true;
   for (const BodyVolume& f : shape.check_frames) {
     ++checked;
-    const float x = c * f.center_m.x + sn * f.center_m.y + pos.x;
-    const float z = -sn * f.center_m.x + c * f.center_m.y + pos.y;
-    if (frame_blocked(world, x, z, f.radius_m, f.y_min_m + h0, f.y_max_m + h0, ground_lo,
-                      ground_hi)) {
+    if (frame_blocked(world, placed(f, c, sn, pos, h0), ground_lo, ground_hi)) {
       feasible = false;
       break;
     }
@@ -134,9 +160,7 @@ int segment_first_collision(const CollisionWorld& world, const SegmentCollisionS
   const float tol = world.config.ground_tolerance_m;
   for (std::size_t i = 0; i < shape.frames.size(); ++i) {
     const BodyVolume& f = shape.frames[i];
-    const float x = c * f.center_m.x + sn * f.center_m.y + pos.x;
-    const float z = -sn * f.center_m.x + c * f.center_m.y + pos.y;
-    if (frame_blocked(world, x, z, f.radius_m, f.y_min_m + h0, f.y_max_m + h0, h0 - tol, h0 + tol))
+    if (frame_blocked(world, placed(f, c, sn, pos, h0), h0 - tol, h0 + tol))
       return static_cast<int>(i);
   }
   return -1;

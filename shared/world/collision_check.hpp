@@ -24,6 +24,10 @@ struct CheckStats {
 bool frame_collides(const CollisionWorld& world, const BodyVolume& world_volume,
                     float ground_ref_y_m = 0.0f);
 
+/// The bounds and box part of frame_collides, without the terrain rule: does the volume (world
+/// space) leave the bounds or overlap a box?
+bool volume_hits_boxes(const CollisionWorld& world, const BodyVolume& world_volume);
+
 /// True only if every frame of the segment placed at `start` is collision-free. The clip is played
 /// at the ground height under start.pos_m (h0): each frame's y range is offset by h0 and h0 is the
 /// terrain rule's reference; no ground under the start means infeasible. Stops at the first

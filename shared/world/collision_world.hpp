@@ -5,19 +5,20 @@
 // number of threads may query one world. Queries: collision_check.hpp.
 //
 // Collision model (docs/SCENES.md):
-//  * Body: one vertical cylinder per frame (BodyVolume: ground disc + y range).
-//  * Box: overlaps the body when the disc's centre is within distance < radius of the box's ground
-//    rectangle (or inside it) AND the y ranges overlap strictly (box.min_y < y_max and
+//  * Body: one vertical capsule per frame (BodyVolume: ground capsule + y range).
+//  * Box: overlaps the body when the capsule's core segment is within distance < radius of the
+//    box's ground rectangle (or touches it) AND the y ranges overlap strictly (box.min_y < y_max and
 //    box.max_y > y_min). Touching is not a collision; a box whose top is at or below the body's
 //    feet, or whose bottom is at or above its head, is passed (tables, lintels, crouching).
-//  * Bounds: a frame whose disc centre is outside the scene bounds is blocked.
+//  * Bounds: a frame whose capsule centre is outside the scene bounds is blocked.
 //  * Terrain, for clips authored on flat ground: a frame is blocked when there is no ground under
-//    its disc centre or the ground there differs from a reference height (the ground at the
+//    its capsule centre or the ground there differs from a reference height (the ground at the
 //    segment's start) by more than ground_tolerance_m. Real footstep planning on uneven ground is
 //    the terrain planner's job; this rule only keeps flat clips on nearly flat ground.
 #include "world/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -104,6 +105,44 @@ inline bool disc_overlaps_rect(float cx, float cz, float radius, float min_x, fl
   const float d2 = dx * dx + dz * dz;
   // d2 == 0: the centre is inside the (closed) rectangle, a hit even for a zero radius.
   return d2 < radius * radius || d2 == 0.0f;
+}
+
+/// The box test for a capsule: core segment centre (cx, cz) +- (ax, az), grown by `radius`.
+/// Same rule as disc_overlaps_rect (a zero half axis gives the same answer).
+inline bool capsule_overlaps_rect(float cx, float cz, float ax, float az, float radius, float min_x,
+                                  float min_z, float max_x, float max_z) {
+  if (ax == 0.0f && az == 0.0f) return disc_overlaps_rect(cx, cz, radius, min_x, min_z, max_x, max_z);
+  // Bounding boxes apart by at least the radius: no point of the segment is nearer than that.
+  const float ex = std::abs(ax) + radius, ez = std::abs(az) + radius;
+  if (cx - ex >= max_x || cx + ex <= min_x || cz - ez >= max_z || cz + ez <= min_z) return false;
+  // Does the segment touch the closed rectangle (Liang-Barsky clip)?
+  const float x0 = cx - ax, z0 = cz - az, dx = 2.0f * ax, dz = 2.0f * az;
+  float t0 = 0.0f, t1 = 1.0f;
+  const auto clip = [&](float p, float q) {  // keeps t with p * t <= q
+    if (p == 0.0f) return q >= 0.0f;
+    const float t = q / p;
+    if (p < 0.0f) t0 = std::max(t0, t);
+    else t1 = std::min(t1, t);
+    return t0 <= t1;
+  };
+  if (clip(-dx, x0 - min_x) && clip(dx, max_x - x0) && clip(-dz, z0 - min_z) && clip(dz, max_z - z0))
+    return true;
+  // Apart: the nearest pair is a segment end and the rectangle, or a corner and the segment.
+  const auto point_rect = [&](float x, float z) {
+    const float ox = std::max(std::max(min_x - x, x - max_x), 0.0f);
+    const float oz = std::max(std::max(min_z - z, z - max_z), 0.0f);
+    return ox * ox + oz * oz;
+  };
+  const float len2 = dx * dx + dz * dz;
+  const auto corner_segment = [&](float x, float z) {
+    const float t = std::clamp(((x - x0) * dx + (z - z0) * dz) / len2, 0.0f, 1.0f);
+    const float ox = x0 + t * dx - x, oz = z0 + t * dz - z;
+    return ox * ox + oz * oz;
+  };
+  const float d2 = std::min({point_rect(x0, z0), point_rect(x0 + dx, z0 + dz), corner_segment(min_x, min_z),
+                             corner_segment(min_x, max_z), corner_segment(max_x, min_z),
+                             corner_segment(max_x, max_z)});
+  return d2 < radius * radius;
 }
 
 inline bool y_ranges_overlap(float body_min_y, float body_max_y, float box_min_y,

@@ -9,7 +9,7 @@ namespace {
 
 bool finite(const BodyVolume& v) {
   return std::isfinite(v.center_m.x) && std::isfinite(v.center_m.y) && std::isfinite(v.radius_m) &&
-         std::isfinite(v.y_min_m) && std::isfinite(v.y_max_m);
+         std::isfinite(v.half_axis_m.x) && std::isfinite(v.half_axis_m.y) && std::isfinite(v.y_min_m) && std::isfinite(v.y_max_m);
 }
 
 BodyVolume sanitised(BodyVolume v) {
@@ -58,21 +58,22 @@ SegmentCollisionShape make_segment_shape(std::span<const BodyVolume> frames_loca
   for (int i : check_order(n, order, coarse_stride)) s.check_frames.push_back(s.frames[i]);
   if (n == 0) return s;
 
-  // Bounding box of all discs and the origin; its centre is a good enough disc centre.
+  // Bounding box of all footprints and the origin; its centre is a good enough disc centre.
   vec2 lo(0.0f), hi(0.0f);
   s.y_min_m = s.frames[0].y_min_m;
   s.y_max_m = s.frames[0].y_max_m;
   for (const BodyVolume& v : s.frames) {
-    lo = glm::min(lo, v.center_m - vec2(v.radius_m));
-    hi = glm::max(hi, v.center_m + vec2(v.radius_m));
-    s.max_radius_m = std::max(s.max_radius_m, v.radius_m);
+    const vec2 extent = glm::abs(v.half_axis_m) + vec2(v.radius_m);
+    lo = glm::min(lo, v.center_m - extent);
+    hi = glm::max(hi, v.center_m + extent);
+    s.max_reach_m = std::max(s.max_reach_m, v.reach_m());
     s.y_min_m = std::min(s.y_min_m, v.y_min_m);
     s.y_max_m = std::max(s.y_max_m, v.y_max_m);
   }
   s.sweep_center_m = 0.5f * (lo + hi);
   float r = glm::length(s.sweep_center_m);  // The origin must be inside: see segment_feasible.
   for (const BodyVolume& v : s.frames)
-    r = std::max(r, glm::length(v.center_m - s.sweep_center_m) + v.radius_m);
+    r = std::max(r, glm::length(v.center_m - s.sweep_center_m) + v.reach_m());
   s.sweep_radius_m = r;
   // A NaN frame makes the sweep NaN on purpose (no early-out); glm::min/max may drop NaN, so
   // restore it explicitly.

@@ -26,10 +26,10 @@ struct SegmentCollisionShape {
   std::vector<BodyVolume> frames;        ///< Segment-local, in time order.
   std::vector<BodyVolume> check_frames;  ///< The same frames in check order (hot).
   FrameOrder order = kDefaultFrameOrder;
-  /// A disc containing every frame's disc and the origin (the start point), segment-local.
+  /// A disc containing every frame's footprint and the origin (the start point), segment-local.
   vec2 sweep_center_m{0.0f};
   float sweep_radius_m = 0.0f;
-  float max_radius_m = 0.0f;  ///< Largest frame radius.
+  float max_reach_m = 0.0f;  ///< Largest BodyVolume::reach_m() of a frame.
   float y_min_m = 0.0f;       ///< Lowest y_min over the frames.
   float y_max_m = 0.0f;       ///< Highest y_max over the frames.
 

@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace foresight {
 namespace {
 
@@ -19,11 +22,17 @@ TEST(PoseCheck, AToleranceForgivesAGrazeButNotAnOverlap) {
   ASSERT_TRUE(scene_world_load("arena", scene, world, error)) << error;
   const int idle = lib.graph.find_segment("idle");
   ASSERT_GE(idle, 0);
-  // The arena's west wall is x in [-8.3, -8.0] (1 m high). Place the idle body so that its disc
-  // reaches `depth` metres into the wall.
-  const BodyVolume v = lib.volumes(idle)[0];
+  // The arena's west wall is x in [-8.3, -8.0] (1 m high). Place the idle body so that its flesh
+  // (the westmost joint grown by the margin) reaches `depth` metres into the wall.
+  Pose pose;
+  playback_pose(lib, PlaybackState{idle, 0, Placement{}, -1}, pose);
+  std::vector<vec3> joints(static_cast<size_t>(lib.num_joints()));
+  std::vector<quat> rot(joints.size());
+  fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, joints, rot);
+  float west = joints[0].x;
+  for (const vec3& j : joints) west = std::min(west, j.x);
   auto at_depth = [&](float depth) {
-    const float x = -8.0f + v.radius_m - depth - v.center_m.x;
+    const float x = -8.0f + lib.body_margin_m - depth - west;
     return PlaybackState{idle, 0, Placement{vec2(x, 0.0f), 0.0f}, -1};
   };
   PoseCheckScratch scratch;
@@ -58,8 +67,12 @@ TEST(PoseCheck, SegmentVolumesHoldEveryBlendedPoseShown) {
       fk_pose(lib.skeleton, pose.local_pos_m, pose.local_rot, joints, rot);
       const BodyVolume shown = body_volume_from_pose(joints, lib.body_margin_m, lib.head_top_margin_m);
       const BodyVolume& kept = frames[static_cast<size_t>(k)];
-      EXPECT_LE(glm::length(shown.center_m - kept.center_m) + shown.radius_m, kept.radius_m + 1e-4f)
-          << lib.graph.segments[tr.from].name << " -> " << lib.graph.segments[tr.to].name << " frame " << k;
+      for (const vec3& j : joints) {  // every joint's flesh inside the kept capsule
+        const float gap = std::sqrt(segment_distance_sq(ground(j), ground(j), kept.center_m - kept.half_axis_m,
+                                                        kept.center_m + kept.half_axis_m));
+        EXPECT_LE(gap + lib.body_margin_m, kept.radius_m + 1e-4f)
+            << lib.graph.segments[tr.from].name << " -> " << lib.graph.segments[tr.to].name << " frame " << k;
+      }
       EXPECT_LE(shown.y_max_m, kept.y_max_m + 1e-4f);
       ++checked;
     }

@@ -3,6 +3,7 @@
 #include "library/pose_check.hpp"
 #include "lookahead/recording_generator.hpp"
 #include "lookahead/replay.hpp"
+#include "lookahead/scene_path.hpp"
 #include "lookahead_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -197,7 +198,10 @@ TEST(LookaheadAvatar, SteeringEndsAStopEarlyForANewCommand) {
 // keeps moving is feasible. In the maze's corridors, where the scripted player swings its keys by
 // right angles at every corner, the paper's choice stops about five times a run (the tree sees a
 // sharp turn as two wide turning steps); the steered avatar walks on. The generator's runs are
-// replayed frame by frame from their recordings (a replay reproduces the run exactly).
+// replayed frame by frame from their recordings (a replay reproduces the run exactly). A stop
+// counts when the held direction is ahead (within 90 degrees of the facing: reversing is a stop
+// and a turn) and open: a body half a shoulder-width wide (0.35 m) clears 1.5 m straight ahead
+// that way (stopping with the key pointing into a near wall is the right answer).
 TEST(LookaheadAvatar, SteeringKeepsWalkingWhileACommandIsHeld) {
   const auto& lib = default_library();
   const auto& maze = loaded_scene("maze");
@@ -224,7 +228,17 @@ TEST(LookaheadAvatar, SteeringKeepsWalkingWhileACommandIsHeld) {
       if (segment == previous) continue;
       ++segments;
       const bool held = glm::length(control_world_direction(in)) > 0.0f;
-      stops += held && lib.graph.segments[static_cast<size_t>(segment)].name.find("_stop") != std::string::npos;
+      const std::string& name = lib.graph.segments[static_cast<size_t>(segment)].name;
+      const vec2 at = run.avatar().playback().segment_start.pos_m;
+      const vec2 held_dir = control_world_direction(in);
+      const float facing = run.avatar().playback().segment_start.heading_rad;
+      const bool ahead = held && glm::dot(glm::normalize(held_dir), vec2(std::sin(facing), std::cos(facing))) > 0.0f;
+      if (ahead && name.find("_stop") != std::string::npos &&
+          scene_segment_clear(maze.world, at, at + 1.5f * glm::normalize(held_dir), 0.35f, kStandingHeight_m)) {
+        ++stops;
+        ADD_FAILURE() << "seed " << seed << ": " << name << " at " << run.time_s() << " s, heading " << degrees(facing) << " deg, (" << at.x << ", "
+                      << at.y << ") while the key held points the open way (" << held_dir.x << ", " << held_dir.y << ")";
+      }
       previous = segment;
     }
     EXPECT_TRUE(run.result().reached_goal) << "seed " << seed;

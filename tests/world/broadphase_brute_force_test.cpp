@@ -52,7 +52,7 @@ Scene random_scene(std::uint64_t seed) {
   return s;
 }
 
-/// Random volumes around and beyond the bounds: radii from 0 to well past the fast radius, y
+/// Random volumes around and beyond the bounds: discs and capsules, radii from 0 to well past the fast radius, y
 /// ranges from crouching to tall, ground references at or near the local ground.
 void compare_frames(const Scene& scene, const CollisionWorld& world, std::uint64_t seed, int n) {
   Rng rng(seed);
@@ -65,6 +65,11 @@ void compare_frames(const Scene& scene, const CollisionWorld& world, std::uint64
                   uniform(rng, b.min_m.y - 1.0f, b.max_m.y + 1.0f)};
     const float pick = uniform(rng, 0.0f, 1.0f);
     v.radius_m = pick < 0.05f ? 0.0f : pick < 0.85f ? uniform(rng, 0.05f, 0.6f) : uniform(rng, 0.6f, 2.5f);
+    // Half the volumes are capsules, long axes of any direction.
+    if (uniform(rng, 0.0f, 1.0f) < 0.5f) {
+      const float a = uniform(rng, -kPi, kPi);
+      v.half_axis_m = uniform(rng, 0.0f, 0.7f) * vec2(std::cos(a), std::sin(a));
+    }
     float g = 0.0f;
     const bool has_ground = terrain_height_at(scene.terrain, v.center_m, g);
     const float ref = has_ground && pick < 0.7f ? g : uniform(rng, -0.5f, 0.8f);
@@ -75,7 +80,7 @@ void compare_frames(const Scene& scene, const CollisionWorld& world, std::uint64
     hits += expected;
     if (got != expected && ++mismatches <= 5)
       ADD_FAILURE() << "frame " << i << " at (" << v.center_m.x << ", " << v.center_m.y
-                    << ") r=" << v.radius_m << " y=" << v.y_min_m << ".." << v.y_max_m
+                    << ") r=" << v.radius_m << " half axis (" << v.half_axis_m.x << ", " << v.half_axis_m.y << ") y=" << v.y_min_m << ".." << v.y_max_m
                     << " ref=" << ref << ": grid " << got << ", brute " << expected;
   }
   EXPECT_EQ(mismatches, 0);
@@ -93,6 +98,7 @@ std::vector<SegmentCollisionShape> random_shapes(Rng& rng, FrameOrder order) {
     spec.turn_rad = uniform(rng, -2.0f, 2.0f) * (i % 3 == 0 ? 0.0f : 1.0f);
     spec.sideways_m = i % 5 == 0 ? uniform(rng, -0.8f, 0.8f) : 0.0f;
     spec.radius_m = i % 7 == 0 ? uniform(rng, 0.6f, 1.2f) : uniform(rng, 0.1f, 0.5f);
+    spec.half_length_m = i % 2 == 0 ? uniform(rng, 0.0f, 0.5f) : 0.0f;
     spec.y_max_m = uniform(rng, 0.9f, 2.0f);
     shapes.push_back(make_segment_shape(synthetic_sweep(spec), order, 1 + i % 6));
   }

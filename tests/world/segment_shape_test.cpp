@@ -47,12 +47,13 @@ TEST(SegmentShape, SweepDiscBoundsFramesAndStart) {
   spec.forward_m = 2.0f;
   spec.turn_rad = 1.3f;
   spec.sideways_m = -0.4f;
+  spec.half_length_m = 0.3f;
   const SegmentCollisionShape s = make_segment_shape(synthetic_sweep(spec));
   ASSERT_EQ(s.frames.size(), 30u);
   EXPECT_LE(glm::length(s.sweep_center_m), s.sweep_radius_m);
   for (const BodyVolume& v : s.frames)
-    EXPECT_LE(glm::length(v.center_m - s.sweep_center_m) + v.radius_m, s.sweep_radius_m + 1e-5f);
-  EXPECT_FLOAT_EQ(s.max_radius_m, 0.35f);
+    EXPECT_LE(glm::length(v.center_m - s.sweep_center_m) + v.reach_m(), s.sweep_radius_m + 1e-5f);
+  EXPECT_FLOAT_EQ(s.max_reach_m, 0.65f);
   EXPECT_FLOAT_EQ(s.y_max_m, 1.85f);
   // Not absurdly loose: no more than the farthest frame's reach from the start plus a radius.
   EXPECT_LT(s.sweep_radius_m, 2.0f);

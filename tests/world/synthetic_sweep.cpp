@@ -12,6 +12,7 @@ std::vector<BodyVolume> synthetic_sweep(const SyntheticSweepSpec& spec) {
     const float t = spec.frames > 1 ? static_cast<float>(i) / static_cast<float>(spec.frames - 1) : 0.0f;
     const float s = spec.forward_m * t;
     vec2 p;
+    float heading = 0.0f;
     if (std::abs(spec.turn_rad) < 1e-6f) {
       p = {0.0f, s};
     } else {
@@ -19,10 +20,12 @@ std::vector<BodyVolume> synthetic_sweep(const SyntheticSweepSpec& spec) {
       // d(x, z)/ds = (sin h, cos h) as in math/types.hpp.
       const float radius = spec.forward_m / spec.turn_rad;
       const float h = spec.turn_rad * t;
+      heading = h;
       p = {radius * (1.0f - std::cos(h)), radius * std::sin(h)};
     }
     p.x += spec.sideways_m * t;
-    out.push_back({p, spec.radius_m, spec.y_min_m, spec.y_max_m});
+    out.push_back({p, spec.radius_m, spec.y_min_m, spec.y_max_m,
+                   spec.half_length_m * vec2(std::sin(heading), std::cos(heading))});
   }
   return out;
 }

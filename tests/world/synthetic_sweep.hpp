@@ -1,6 +1,6 @@
 #pragma once
 // Synthetic per-frame body volumes for the world tests (independent of any motion library): a cylinder
-// moving along a straight line or a circular arc from the origin, starting toward +Z
+// or capsule (long axis along the path) moving along a straight line or a circular arc from the origin, starting toward +Z
 // (segment-local space, as make_segment_shape expects).
 #include "world/body_volume.hpp"
 
@@ -14,6 +14,7 @@ struct SyntheticSweepSpec {
   float turn_rad = 0.0f;    ///< Total heading change along the path (+ = toward +X, the left).
   float sideways_m = 0.0f;  ///< Extra straight drift toward +X over the segment (side steps).
   float radius_m = 0.35f;
+  float half_length_m = 0.0f;  ///< Capsule core half length along the path's heading (0: a disc).
   float y_min_m = 0.0f;
   float y_max_m = 1.85f;
 };

@@ -32,6 +32,22 @@ inline CollisionWorld build_world(const Scene& scene, const CollisionWorldConfig
   return world;
 }
 
+/// Does the capsule touch the box's ground rectangle? Written independently of
+/// capsule_overlaps_rect: an end inside the rectangle, or the core within r of an edge.
+inline bool brute_capsule_touches(const BodyVolume& v, const SceneBox& b) {
+  const vec2 p0 = v.center_m - v.half_axis_m, p1 = v.center_m + v.half_axis_m;
+  const auto inside = [&](vec2 p) {
+    return p.x >= b.min_m.x && p.x <= b.max_m.x && p.y >= b.min_m.z && p.y <= b.max_m.z;
+  };
+  if (inside(p0) || inside(p1)) return true;
+  const vec2 c[4] = {{b.min_m.x, b.min_m.z}, {b.max_m.x, b.min_m.z}, {b.max_m.x, b.max_m.z}, {b.min_m.x, b.max_m.z}};
+  for (int i = 0; i < 4; ++i) {
+    const float d2 = segment_distance_sq(p0, p1, c[i], c[(i + 1) % 4]);
+    if (d2 <= 1e-8f || d2 < v.radius_m * v.radius_m) return true;  // a crossing rounds to ~0 (long edges)
+  }
+  return false;
+}
+
 /// The collision model written as plainly as possible: every box, the scene's own terrain.
 inline bool brute_frame_collides(const Scene& scene, const BodyVolume& v, float ground_ref_y_m,
                                  float tolerance_m) {
@@ -40,9 +56,7 @@ inline bool brute_frame_collides(const Scene& scene, const BodyVolume& v, float 
   if (!terrain_height_at(scene.terrain, v.center_m, g)) return true;
   if (!(g >= ground_ref_y_m - tolerance_m && g <= ground_ref_y_m + tolerance_m)) return true;
   for (const SceneBox& b : scene.boxes) {
-    if (disc_overlaps_rect(v.center_m.x, v.center_m.y, v.radius_m, b.min_m.x, b.min_m.z, b.max_m.x,
-                           b.max_m.z) &&
-        y_ranges_overlap(v.y_min_m, v.y_max_m, b.min_m.y, b.max_m.y))
+    if (brute_capsule_touches(v, b) && y_ranges_overlap(v.y_min_m, v.y_max_m, b.min_m.y, b.max_m.y))
       return true;
   }
   return false;

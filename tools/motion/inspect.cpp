@@ -111,9 +111,11 @@ int command_info(const MotionSource& source, bool brief, bool json) {
   for (int s = 0; s < lib.graph.num_segments(); ++s) {
     const Segment& seg = lib.graph.segments[s];
     const SegmentMotion& m = lib.segment_motion[s];
-    std::printf("  %-28s %3d frames  r=(%+.2f, %+.2f) m  turn %+6.1f deg  -> %zu successors\n",
+    const SegmentBody body = segment_body(lib, s);
+    std::printf("  %-28s %3d frames  r=(%+.2f, %+.2f) m  turn %+6.1f deg  body %.2f x %.2f x %.2f m  -> %zu successors\n",
                 seg.name.c_str(), seg.num_frames(), m.end.pos_m.x, m.end.pos_m.y,
-                degrees(m.end.heading_rad), lib.graph.successors(s).size());
+                degrees(m.end.heading_rad), body.width_m, body.length_m, body.height_m,
+                lib.graph.successors(s).size());
   }
   return 0;
 }
