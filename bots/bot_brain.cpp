@@ -91,11 +91,12 @@ ControlInput BotBrain::steer(const BotWorld& world, const BotFleetConfig& config
     next_plan_s_ = t_s + kPlanRetry_s;  // the next try, should this one fail
     if (!pick_target(world, pos)) {
       ++plan_failures_;
+      last_plan_failure_ = "no goal or free point to walk to near " + std::to_string(pos.x) + ", " + std::to_string(pos.y);
       return waiting();
     }
     player_config_.seed = rng_();
-    std::string error;  // the reason is not shown: a failed plan is counted and retried
-    if (!player_.plan(*world.library, world.scene, world.world, own, target_, player_config_, error)) {
+    // Counted, kept for the report (the fleet prints the distinct reasons) and retried.
+    if (!player_.plan(*world.library, world.scene, world.world, own, target_, player_config_, last_plan_failure_)) {
       ++plan_failures_;
       return waiting();
     }
@@ -136,8 +137,8 @@ bool BotBrain::pick_free_point(const BotWorld& world, vec2 pos) {
     const float radius = kWanderMin_m + static_cast<float>(unit()) * (kWanderMax_m - kWanderMin_m);
     const vec2 p = pos + radius * vec2(std::sin(angle), std::cos(angle));
     if (!bounds.contains(p)) continue;
-    // Free for the walker the route is planned for, so plan() has a chance.
-    if (!scene_segment_clear(world.world, p, p, player_config_.route_clearance_m, world.body_height_m)) {
+    // Free for the library's own walker, so plan() has a chance.
+    if (!scene_segment_clear(world.world, p, p, world.body_clearance_m, world.body_height_m)) {
       continue;
     }
     target_ = p;

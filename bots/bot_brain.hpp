@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <random>
+#include <string>
 
 namespace foresight::bots {
 
@@ -43,6 +44,9 @@ class BotBrain {
 
   uint64_t targets_reached() const { return targets_reached_; }
   uint64_t plan_failures() const { return plan_failures_; }
+  /// Why the last plan failed (empty when none has): the scripted player's reason, or that no
+  /// free point or goal was left to pick.
+  const std::string& last_plan_failure() const { return last_plan_failure_; }
   uint64_t targets_given_up() const { return targets_given_up_; }
   /// Frames spent running from a fighter (dodge).
   uint64_t dodge_frames() const { return dodge_frames_; }
@@ -77,6 +81,7 @@ class BotBrain {
   bool dodge_left_ = false;  ///< Which side a dodge runs to.
   uint64_t targets_reached_ = 0, plan_failures_ = 0, targets_given_up_ = 0, dodge_frames_ = 0;
   double walked_m_ = 0;
+  std::string last_plan_failure_;
 };
 
 }  // namespace foresight::bots

@@ -357,6 +357,10 @@ BotReport BotFleet::report(TimePoint now) const {
     r.walked_m_mean += b->brain.walked_m();
     r.targets_given_up += b->brain.targets_given_up();
     r.plan_failures += b->brain.plan_failures();
+    const std::string& why = b->brain.last_plan_failure();
+    if (!why.empty() && r.plan_failure_reasons.size() < 3 &&
+        std::find(r.plan_failure_reasons.begin(), r.plan_failure_reasons.end(), why) == r.plan_failure_reasons.end())
+      r.plan_failure_reasons.push_back(why);
     r.rtt_ms.merge(c.rtt_ms());
     r.snapshot_interval_ms.merge(c.snapshot_interval_ms());
     r.snapshot_packets += c.snapshot_packets();

@@ -30,6 +30,7 @@ void bot_report_print(const BotReport& r, std::ostream& out) {
   out << "  goals reached " << r.goals_reached << ", walked " << fixed(r.walked_m_mean)
       << " m per bot, given up " << r.targets_given_up
       << ", failed plans " << r.plan_failures << "\n";
+  for (const std::string& why : r.plan_failure_reasons) out << "  failed plan: " << why << "\n";
   out << "  collisions: " << r.scene_collisions << " with the scene, " << r.avatar_contacts
       << " avatar contacts (" << r.avatars_checked << " avatar states checked, "
       << r.invalid_states << " invalid)\n";
@@ -86,6 +87,7 @@ nlohmann::json bot_report_json(const BotReport& r) {
   j["walked_m_mean"] = round3(r.walked_m_mean);
   j["targets_given_up"] = r.targets_given_up;
   j["plan_failures"] = r.plan_failures;
+  j["plan_failure_reasons"] = r.plan_failure_reasons;
   j["collisions"] = r.scene_collisions + r.avatar_contacts;
   j["scene_collisions"] = r.scene_collisions;
   j["avatar_contacts"] = r.avatar_contacts;

@@ -34,6 +34,7 @@ struct BotReport {
   double walked_m_mean = 0;  ///< Per accepted bot: its avatar's path length as seen.
   uint64_t targets_given_up = 0;
   uint64_t plan_failures = 0;
+  std::vector<std::string> plan_failure_reasons;  ///< Distinct last reasons of bots (at most 3).
   uint64_t scene_collisions = 0;  ///< (tick, avatar) events: the shown pose overlaps the scene.
   uint64_t avatar_contacts = 0;   ///< (tick, pair) events: roots closer than the contact distance.
   uint64_t avatars_checked = 0;   ///< (tick, avatar) states the collision watch examined.

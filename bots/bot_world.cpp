@@ -30,6 +30,7 @@ bool bot_world_load(BotWorld& out, const MotionLibrary& library, const std::stri
     }
   }
   out.body_height_m = lowest_moving_body_m(library);
+  out.body_clearance_m = moving_body_clearance_m(library);
   out.loaded = true;
   return true;
 }

@@ -21,6 +21,7 @@ struct BotWorld {
   std::string scene_name;  ///< As the server named it in Accept.
   Recording recording;     ///< kReplay only.
   float body_height_m = 0; ///< lowest_moving_body_m(library): where routes must be free.
+  float body_clearance_m = 0;  ///< moving_body_clearance_m(library): how wide they must be.
 };
 
 /// data/recordings/<scene>_eval.json

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the built-in scenes (maze, obstacles, terrain, arena) into this folder.
+"""Writes the built-in scenes (maze, obstacles, terrain, arena, field, doorways, beams, pillars,
+dead_end) into this folder.
 
 The JSON files are the source of truth that the game loads; this script is how they were made and
 how to remake them after a layout change:  python3 data/scenes/generate_scenes.py
@@ -428,9 +429,85 @@ def field_scene():
     }
 
 
+# ---- Scenes of the size real levels use (issue 17): passages a person fits through -------------
+# Passage centres lie on multiples of 0.25 m (the route planner's grid, scene_path.hpp), as a
+# level designer's 0.5 m grid would put them.
+
+def outer_walls(w, l, t=0.2, h=WALL_H):
+    """Four walls of thickness t along the inside of the bounds [0, w] x [0, l]."""
+    return [
+        box("wall", "outer-west", [0, 0, 0], [t, h, l]),
+        box("wall", "outer-east", [w - t, 0, 0], [w, h, l]),
+        box("wall", "outer-south", [t, 0, 0], [w - t, h, t]),
+        box("wall", "outer-north", [t, 0, l - t], [w - t, h, l]),
+    ]
+
+
+def small_scene(name, comment, w, l, boxes, spawn, goal, back):
+    lo, hi = [0.0, 0.0], [w, l]
+    return {
+        "format": "foresight-scene", "version": 1,
+        "name": name,
+        "_comment": comment,
+        "bounds": {"min": lo, "max": hi},
+        "boxes": outer_walls(w, l) + boxes,
+        "spawns": [{"name": "start", "pos": spawn, "heading_deg": 0.0}],
+        "goals": [{"name": "goal", "pos": goal, "radius": 0.6},
+                  {"name": "back", "pos": back, "radius": 0.6}],
+        "cameras": quadrant_cameras(lo, hi, height=8.0),
+        "npcs": [],
+    }
+
+
+def doorways_scene():
+    """Three cross walls with 0.9 m doorways, offset left, right, left: a standard door's width."""
+    boxes = []
+    for i, (z, door_x) in enumerate([(3.0, 1.5), (6.0, 4.5), (9.0, 1.5)]):
+        lo_z, hi_z = z - 0.1, z + 0.1
+        boxes.append(box("wall", f"cross-{i + 1}-a", [0.2, 0, lo_z], [door_x - 0.45, WALL_H, hi_z]))
+        boxes.append(box("wall", f"cross-{i + 1}-b", [door_x + 0.45, 0, lo_z], [5.8, WALL_H, hi_z]))
+    return small_scene("doorways", "Rooms joined by 0.9 m doorways, offset so every door needs a turn.",
+                       6.0, 12.0, boxes, [3.0, 1.25], [3.0, 10.75], [3.0, 1.5])
+
+
+def beams_scene():
+    """A 1.0 m corridor, 6 m long, crossed by beams whose underside is 1.2 m above the floor."""
+    boxes = [box("wall", "corridor-west", [0.2, 0, 4.0], [2.5, WALL_H, 10.0]),
+             box("wall", "corridor-east", [3.5, 0, 4.0], [5.8, WALL_H, 10.0])]
+    for i, z in enumerate([5.5, 7.0, 8.5]):
+        boxes.append(box("beam", f"beam-{i + 1}", [2.5, 1.2, z - 0.15], [3.5, 1.5, z + 0.15]))
+    return small_scene("beams", "A 1.0 m corridor under three beams at 1.2 m: crouch-walk through it.",
+                       6.0, 14.0, boxes, [3.0, 1.5], [3.0, 12.5], [3.0, 1.75])
+
+
+def pillars_scene():
+    """Pillars 0.45 m square on a 1.25 m grid: 0.8 m gaps between them, four rows deep."""
+    boxes = []
+    for r, zc in enumerate([3.125, 4.375, 5.625, 6.875]):
+        for c in range(8):
+            xc = 0.625 + 1.25 * c
+            boxes.append(box("obstacle", f"pillar-{r + 1}-{c + 1}", [xc - 0.225, 0, zc - 0.225],
+                             [xc + 0.225, WALL_H, zc + 0.225]))
+    return small_scene("pillars", "A field of pillars with 0.8 m gaps between them, crossed on the diagonal.",
+                       10.0, 10.0, boxes, [2.5, 1.25], [7.5, 8.75], [2.5, 1.5])
+
+
+def dead_end_scene():
+    """A U-shaped pocket 4 m deep opening toward the start, the goal right behind it."""
+    boxes = [box("wall", "pocket-back", [3.0, 0, 7.8], [9.0, WALL_H, 8.0]),
+             box("wall", "pocket-west", [3.0, 0, 4.0], [3.2, WALL_H, 7.8]),
+             box("wall", "pocket-east", [8.8, 0, 4.0], [9.0, WALL_H, 7.8])]
+    return small_scene("dead_end", "A dead end straight ahead of the start; the goal is behind it.",
+                       12.0, 12.0, boxes, [6.0, 1.5], [6.0, 10.5], [6.0, 1.75])
+
+
 if __name__ == "__main__":
     write_scene("maze.json", maze_scene())
     write_scene("obstacles.json", obstacles_scene())
     write_scene("terrain.json", terrain_scene())
     write_scene("arena.json", arena_scene())
     write_scene("field.json", field_scene())
+    write_scene("doorways.json", doorways_scene())
+    write_scene("beams.json", beams_scene())
+    write_scene("pillars.json", pillars_scene())
+    write_scene("dead_end.json", dead_end_scene())

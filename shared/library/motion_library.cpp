@@ -104,6 +104,13 @@ bool validate(const MotionLibrary& lib, std::string& error) {
   return true;
 }
 
+/// The character's facing at `frame` of a segment's clip, in the segment's own frame (the start
+/// faces +Z): what each frame's body capsule is oriented along.
+vec2 facing_in(const MotionLibrary& lib, const Segment& s, int frame) {
+  const float h = lib.root_placement(s.clip, frame).heading_rad - lib.root_placement(s.clip, s.first_frame).heading_rad;
+  return {std::sin(h), std::cos(h)};
+}
+
 }  // namespace
 
 int MotionLibrary::find_transition(int from, int to) const {
@@ -153,7 +160,7 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
     for (int f = s.first_frame; f <= s.end_frame; ++f) {
       fk_pose(lib.skeleton, clip.frame_pos(f), clip.frame_rot(f), global, global_rot);
       for (vec3& p : global) p = to_local.apply(p);
-      volumes[si].push_back(body_volume_from_pose(global, lib.body_margin_m, lib.head_top_margin_m));
+      volumes[si].push_back(body_volume_from_pose(global, facing_in(lib, s, f), lib.body_margin_m, lib.head_top_margin_m));
       if (f - s.first_frame < blended_frames[si]) shown_joints[si].push_back(global);
     }
   }
@@ -174,9 +181,7 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
 
   // The poses shown while a transition blends out differ from the clip's by up to the join's gap
   // (about 1.5 cm): each blended frame's volume is fitted to every incoming blend's pose too, so
-  // what the tree checks covers what is shown (shown_pose_collides), not only the clip. Fitting
-  // one capsule to all the joints keeps it as narrow as the poses (two capsules fitted apart may
-  // lie at different angles, and a capsule around both is wider than either).
+  // what the tree checks covers what is shown (shown_pose_collides), not only the clip.
   Pose pose;
   for (size_t t = 0; t < lib.graph.transitions.size(); ++t) {
     const Transition& tr = lib.graph.transitions[t];
@@ -190,7 +195,9 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   }
   for (size_t si = 0; si < shown_joints.size(); ++si)
     for (size_t k = 0; k < shown_joints[si].size(); ++k)
-      volumes[si][k] = body_volume_from_pose(shown_joints[si][k], lib.body_margin_m, lib.head_top_margin_m);
+      volumes[si][k] = body_volume_from_pose(shown_joints[si][k], facing_in(lib, lib.graph.segments[si],
+                                                                          lib.graph.segments[si].first_frame + static_cast<int>(k)),
+                                             lib.body_margin_m, lib.head_top_margin_m);
   for (const std::vector<BodyVolume>& frames : volumes) lib.segment_shapes.push_back(make_segment_shape(frames));
 
   lib.content_hash = content_hash_of(lib);

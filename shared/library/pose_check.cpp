@@ -30,7 +30,9 @@ bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& wor
   const Placement to_local = state.segment_start.inverse();
   for (vec3& p : scratch.joint_pos_m) p = to_local.apply(p);
   const float flesh_m = std::max(library.body_margin_m - tolerance_m, 0.0f);
-  BodyVolume body = place(body_volume_from_pose(scratch.joint_pos_m, flesh_m, library.head_top_margin_m),
+  const float facing = playback_root(library, state).heading_rad - state.segment_start.heading_rad;
+  BodyVolume body = place(body_volume_from_pose(scratch.joint_pos_m, vec2(std::sin(facing), std::cos(facing)),
+                                                flesh_m, library.head_top_margin_m),
                           state.segment_start);
   float ground_m = 0.0f;
   ground_height_at(world, state.segment_start.pos_m, ground_m);

@@ -91,6 +91,15 @@ float lowest_moving_body_m(const MotionLibrary& library) {
   return lowest;
 }
 
+float moving_body_clearance_m(const MotionLibrary& library) {
+  std::vector<float> widths;
+  for (int s = 0; s < library.graph.num_segments(); ++s)
+    if (library.graph.segments[s].tags & kTagLocomotion) widths.push_back(segment_body(library, s).width_m);
+  if (widths.empty()) return 0.35f;
+  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
+  return 0.5f * widths[widths.size() / 2] + 0.03f;
+}
+
 bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, const CollisionWorld& world,
                           const Placement& start, vec2 goal, const ScriptedPlayerConfig& config,
                           std::string& error) {
@@ -118,8 +127,15 @@ bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, cons
   }
 
   const float height = lowest_moving_body_m(library);
+  const float body_clearance = moving_body_clearance_m(library);
   std::vector<vec2> route;
-  if (!scene_route(world, start.pos_m, goal, c.route_clearance_m, height, route)) {
+  float clearance = c.route_clearance_m;
+  bool routed = scene_route(world, start.pos_m, goal, clearance, height, route);
+  if (!routed && body_clearance < clearance) {
+    clearance = body_clearance;
+    routed = scene_route(world, start.pos_m, goal, clearance, height, route);
+  }
+  if (!routed) {
     const std::string body = "a body of height " + metres(height);
     if (!scene_segment_clear(world, start.pos_m, start.pos_m, kThinRadius_m, height))
       error = "no route: the start " + point_text(start.pos_m) + " is not free for " + body +
@@ -129,7 +145,9 @@ bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, cons
               " (inside an obstacle or outside the scene)";
     else
       error = "no route from " + point_text(start.pos_m) + " to " + point_text(goal) +
-              " for a body of radius " + metres(c.route_clearance_m) + " and height " + metres(height);
+              " for a body of radius " + metres(clearance) + " and height " + metres(height) +
+              " (the library's walkers are " + metres(2.0f * (body_clearance - 0.03f)) +
+              " across): every way is narrower or lower, or walled off";
     return false;
   }
 
@@ -140,6 +158,8 @@ bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, cons
   route_ = std::move(route);
   route_length_m_ = foresight::route_length_m(route_);
   route_body_height_m_ = height;
+  route_clearance_used_m_ = clearance;
+  config_.sight_clearance_m = std::min(c.sight_clearance_m, clearance);
   const int stuck_frames =
       std::max(1, static_cast<int>(std::lround(c.human.stuck_after_s / c.frame_interval_s)));
   history_.assign(static_cast<size_t>(stuck_frames) + 1, vec2(0.0f));

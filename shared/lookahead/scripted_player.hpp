@@ -10,7 +10,9 @@
 //    heading when the scene has none yet),
 //  * follows the route (scene_path.hpp), planned with the lowest body the library can move in (so
 //    crouch-only passages are on the route; the player never presses crouch: the avatar must
-//    choose to crouch by itself): it heads for the furthest point of the route, up to
+//    choose to crouch by itself) and, where the comfortable clearance finds no way, for the
+//    library's own width (moving_body_clearance_m: doorways and gaps a person fits through): it
+//    heads for the furthest point of the route, up to
 //    look_ahead_m ahead of the avatar's closest point on it, that a clear straight line
 //    (sight_clearance_m wide) from the avatar reaches (waypoints within waypoint_reached_m count
 //    as passed),
@@ -57,10 +59,13 @@ struct HumanModel {
 };
 
 struct ScriptedPlayerConfig {
-  float route_clearance_m = 0.9f;   ///< Radius of the walker the route is planned for.
+  /// Radius of the walker the route is planned for first (corridor centres). Where that finds no
+  /// route, the library's own walker (moving_body_clearance_m) is planned for.
+  float route_clearance_m = 0.9f;
   float waypoint_reached_m = 0.8f;  ///< A waypoint this close counts as passed.
   float look_ahead_m = 4.0f;        ///< How far along the route the player looks.
-  float sight_clearance_m = 0.5f;   ///< Width (radius) of the clear line it steers along.
+  /// Width (radius) of the clear line it steers along; at most the clearance the route got.
+  float sight_clearance_m = 0.5f;
   HumanModel human;
   uint64_t seed = 1;  ///< Of the human behaviour.
   /// The interval between frame() calls, in [0.002, 1] s: the per-frame chances of hesitating
@@ -95,6 +100,8 @@ class ScriptedPlayer {
   float route_length_m() const { return route_length_m_; }
   /// The body height the route was planned for (lowest_moving_body_m).
   float route_body_height_m() const { return route_body_height_m_; }
+  /// The clearance (radius) the route was planned for: route_clearance_m or the library's own.
+  float route_clearance_used_m() const { return route_clearance_used_m_; }
 
  private:
   enum class Mode { kFollow, kHesitate, kWrongTap, kWiggle };
@@ -118,6 +125,7 @@ class ScriptedPlayer {
   std::vector<vec2> route_;
   float route_length_m_ = 0.0f;
   float route_body_height_m_ = 0.0f;
+  float route_clearance_used_m_ = 0.0f;
 
   // What the player sees.
   int camera_ = -1;  ///< Scene camera index, -1 before any covered the avatar.
@@ -144,5 +152,10 @@ class ScriptedPlayer {
 /// point of their collision volumes (crouch-walking for the default library). 1.85 m when the
 /// library has no locomotion.
 float lowest_moving_body_m(const MotionLibrary& library);
+
+/// The clearance a route needs for the library's walkers: half the median width of its
+/// locomotion segments' bodies (segment_body) plus 3 cm of room to steer (the look-ahead checks
+/// every motion exactly: only those that fit are taken); 0.35 m for a library with no locomotion.
+float moving_body_clearance_m(const MotionLibrary& library);
 
 }  // namespace foresight

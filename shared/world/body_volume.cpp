@@ -1,37 +1,32 @@
 #include "world/body_volume.hpp"
 
 #include <algorithm>
-#include <array>
 #include <limits>
 #include <vector>
 
 namespace foresight {
-namespace {
-
-constexpr int kAxesTried = 36;  // every 5 degrees over half a turn
-
-/// A disc the capsule must hold: centre and radius (0 for a joint).
-struct Disc {
-  vec2 c;
-  float r;
-};
-
-/// The narrowest capsule along `axis` holding every disc, grown by `margin_m`.
-BodyVolume capsule_along(std::span<const Disc> discs, vec2 axis, float margin_m) {
+BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, vec2 facing, float margin_m,
+                                 float head_top_m) {
+  if (joint_pos_m.empty()) return {};
+  const float len = glm::length(facing);
+  const vec2 axis = len > 1e-6f ? facing / len : vec2(0.0f, 1.0f);
   const vec2 side(-axis.y, axis.x);
   float v_lo = std::numeric_limits<float>::max(), v_hi = -v_lo;
-  for (const Disc& d : discs) {
-    const float v = glm::dot(d.c, side);
-    v_lo = std::min(v_lo, v - d.r);
-    v_hi = std::max(v_hi, v + d.r);
+  float y_lo = joint_pos_m[0].y, y_hi = y_lo;
+  for (const vec3& p : joint_pos_m) {
+    const float v = glm::dot(ground(p), side);
+    v_lo = std::min(v_lo, v);
+    v_hi = std::max(v_hi, v);
+    y_lo = std::min(y_lo, p.y);
+    y_hi = std::max(y_hi, p.y);
   }
   const float radius = 0.5f * (v_hi - v_lo), mid_v = 0.5f * (v_hi + v_lo);
-  // Each disc is held when the core segment reaches within sqrt((R - r)^2 - dv^2) of it along
-  // the axis: the segment must span [max(u - s), min(u + s)]; if that is empty, one point does.
+  // A joint is held when the core segment reaches within sqrt(R^2 - dv^2) of it along the axis:
+  // the core must span [max(u - s), min(u + s)]; if that is empty, one point does.
   float a = std::numeric_limits<float>::max(), b = -a;
-  for (const Disc& d : discs) {
-    const float dv = glm::dot(d.c, side) - mid_v, u = glm::dot(d.c, axis);
-    const float s = std::sqrt(std::max((radius - d.r) * (radius - d.r) - dv * dv, 0.0f));
+  for (const vec3& p : joint_pos_m) {
+    const float dv = glm::dot(ground(p), side) - mid_v, u = glm::dot(ground(p), axis);
+    const float s = std::sqrt(std::max(radius * radius - dv * dv, 0.0f));
     a = std::min(a, u + s);
     b = std::max(b, u - s);
   }
@@ -40,49 +35,9 @@ BodyVolume capsule_along(std::span<const Disc> discs, vec2 axis, float margin_m)
   v.center_m = side * mid_v + axis * (0.5f * (a + b));
   v.half_axis_m = axis * (0.5f * (b - a));
   v.radius_m = radius + margin_m;
-  return v;
-}
-
-/// Narrowest first (what decides whether a body passes a gap), then shortest.
-BodyVolume narrowest_capsule(std::span<const Disc> discs, float margin_m) {
-  BodyVolume best;
-  float best_radius = std::numeric_limits<float>::max(), best_length = best_radius;
-  for (int i = 0; i < kAxesTried; ++i) {
-    const float angle = kPi * static_cast<float>(i) / kAxesTried;
-    const BodyVolume v = capsule_along(discs, vec2(std::cos(angle), std::sin(angle)), margin_m);
-    const float length = glm::length(v.half_axis_m);
-    if (v.radius_m < best_radius - 1e-4f || (v.radius_m <= best_radius + 1e-4f && length < best_length))
-      best = v, best_radius = v.radius_m, best_length = length;
-  }
-  return best;
-}
-
-}  // namespace
-
-BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, float margin_m,
-                                 float head_top_m) {
-  if (joint_pos_m.empty()) return {};
-  std::vector<Disc> discs;
-  discs.reserve(joint_pos_m.size());
-  float y_lo = joint_pos_m[0].y, y_hi = y_lo;
-  for (const vec3& p : joint_pos_m) {
-    discs.push_back({ground(p), 0.0f});
-    y_lo = std::min(y_lo, p.y);
-    y_hi = std::max(y_hi, p.y);
-  }
-  BodyVolume v = narrowest_capsule(discs, margin_m);
   v.y_min_m = y_lo;
   v.y_max_m = y_hi + head_top_m;
   return v;
-}
-
-BodyVolume enclosing_volume(const BodyVolume& a, const BodyVolume& b) {
-  const std::array<Disc, 4> ends{Disc{a.center_m - a.half_axis_m, a.radius_m}, Disc{a.center_m + a.half_axis_m, a.radius_m},
-                                 Disc{b.center_m - b.half_axis_m, b.radius_m}, Disc{b.center_m + b.half_axis_m, b.radius_m}};
-  BodyVolume out = narrowest_capsule(ends, 0.0f);
-  out.y_min_m = std::min(a.y_min_m, b.y_min_m);
-  out.y_max_m = std::max(a.y_max_m, b.y_max_m);
-  return out;
 }
 
 float segment_distance_sq(vec2 p0, vec2 p1, vec2 q0, vec2 q1) {

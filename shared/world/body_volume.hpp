@@ -1,10 +1,10 @@
 #pragma once
 // The avatar's body for collision, one volume per frame: a capsule on the ground plane (a core
-// segment grown by a radius, oriented along the pose's long axis) swept between two heights.
-// Oriented, so a striding walker is as narrow as a person (0.56-0.65 m across with its flesh
-// margin: a 0.8 m gap passes) rather than a disc as wide as its stride (1.05 m); height-aware, so a crouching avatar (lower
-// y_max_m) fits under a table that a walking one hits. A zero half axis is a disc (vertical
-// cylinder). Computed offline from the pose; the tick only transforms it.
+// segment along the body's facing, grown by a radius) swept between two heights. Along the facing,
+// so a striding walker is as narrow as a person across its path (about 0.6 m with its flesh
+// margin: a 0.8 m gap passes) rather than a disc as wide as its stride (1.05 m); height-aware, so
+// a crouching avatar (lower y_max_m) fits under a table that a walking one hits. A zero half axis
+// is a disc (vertical cylinder). Computed offline from the pose; the tick only transforms it.
 #include "math/types.hpp"
 
 #include <span>
@@ -24,15 +24,13 @@ struct BodyVolume {
   float reach_m() const { return glm::length(half_axis_m) + radius_m; }
 };
 
-/// Narrowest capsule (axes tried every 5 degrees; the shortest of equally narrow ones) holding
-/// one pose's joint positions, grown
-/// by `margin_m` sideways and `head_top_m` above the highest joint (joints are bone ends; flesh
-/// extends past them).
-BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, float margin_m = 0.08f,
+/// The capsule along `facing` (the character's forward on the ground; need not be unit length)
+/// holding one pose's joint positions, grown by `margin_m` sideways and `head_top_m` above the
+/// highest joint (joints are bone ends; flesh extends past them). Along the facing, because a
+/// body passes a door or a corridor facing along it: its radius is then half the body's width
+/// across its path, the figure that decides what it fits through.
+BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, vec2 facing, float margin_m = 0.08f,
                                  float head_top_m = 0.12f);
-
-/// A volume holding both (a capsule around both footprints, both height ranges).
-BodyVolume enclosing_volume(const BodyVolume& a, const BodyVolume& b);
 
 /// The volume moved by a ground placement.
 inline BodyVolume place(const BodyVolume& v, const Placement& p) {

@@ -353,8 +353,20 @@ TEST(RecordingGenerator, RefusesUnknownPointsAndUnreachableGoals) {
   EXPECT_FALSE(recording_generate(lib, maze.scene, maze.world, config, g, error));
   EXPECT_NE(error.find("no spawn \"moon\""), std::string::npos) << error;
   config.spawn.clear();
-  config.route_clearance_m = 1.5f;  // wider than every corridor
-  EXPECT_FALSE(recording_generate(lib, maze.scene, maze.world, config, g, error));
+  config.goal = "goal";
+  Scene walled = maze.scene;  // the goal's corridor closed off
+  const GoalPoint& goal = walled.goals[0];
+  walled.boxes.push_back({"plug", BoxKind::kWall, {goal.pos_m.x - 1.3f, 0.0f, goal.pos_m.y - 1.3f},
+                          {goal.pos_m.x + 1.3f, 2.5f, goal.pos_m.y - 0.9f}});
+  walled.boxes.push_back({"plug2", BoxKind::kWall, {goal.pos_m.x - 1.3f, 0.0f, goal.pos_m.y - 1.3f},
+                          {goal.pos_m.x - 0.9f, 2.5f, goal.pos_m.y + 1.3f}});
+  walled.boxes.push_back({"plug3", BoxKind::kWall, {goal.pos_m.x + 0.9f, 0.0f, goal.pos_m.y - 1.3f},
+                          {goal.pos_m.x + 1.3f, 2.5f, goal.pos_m.y + 1.3f}});
+  walled.boxes.push_back({"plug4", BoxKind::kWall, {goal.pos_m.x - 1.3f, 0.0f, goal.pos_m.y + 0.9f},
+                          {goal.pos_m.x + 1.3f, 2.5f, goal.pos_m.y + 1.3f}});
+  CollisionWorld walled_world;
+  ASSERT_TRUE(collision_world_build(walled, walled_world, error)) << error;
+  EXPECT_FALSE(recording_generate(lib, walled, walled_world, config, g, error));
   EXPECT_NE(error.find("no route"), std::string::npos) << error;
 }
 

@@ -1,6 +1,6 @@
-// Body footprints (world/body_volume.hpp): the capsule fitted to a pose holds every joint and is as
-// narrow as the pose; enclosing volumes hold both; segment distances and the crowd sweep agree
-// with plain reference computations.
+// Body footprints (world/body_volume.hpp): the capsule fitted to a pose lies along its facing, holds
+// every joint and is as narrow as the pose across its path; segment distances, the capsule-box
+// test and the crowd sweep agree with plain reference computations.
 #include "world/body_volume.hpp"
 
 #include "math/splitmix64.hpp"
@@ -25,17 +25,6 @@ float sampled_core_distance(const BodyVolume& v, vec2 p) {
   return best;
 }
 
-/// Is `inner` inside `outer` on the ground? Both end discs of inner must be (outer is convex).
-/// Exact distances (segment_distance_sq is checked against sampling below).
-bool holds(const BodyVolume& outer, const BodyVolume& inner, float eps = 1e-4f) {
-  for (const vec2 end : {inner.center_m - inner.half_axis_m, inner.center_m + inner.half_axis_m}) {
-    const float d = std::sqrt(segment_distance_sq(end, end, outer.center_m - outer.half_axis_m,
-                                                  outer.center_m + outer.half_axis_m));
-    if (d + inner.radius_m > outer.radius_m + eps) return false;
-  }
-  return true;
-}
-
 BodyVolume random_capsule(SplitMix64& rng, float side) {
   BodyVolume b;
   b.center_m = {rng.uniform(0.0f, side), rng.uniform(0.0f, side)};
@@ -45,7 +34,7 @@ BodyVolume random_capsule(SplitMix64& rng, float side) {
   return b;
 }
 
-TEST(BodyFootprint, PoseCapsuleHoldsEveryJointAndFollowsAStride) {
+TEST(BodyFootprint, PoseCapsuleLiesAlongTheFacingAndHoldsEveryJoint) {
   // A striding walker seen from above: feet 0.8 m apart front to back, shoulders 0.4 m across,
   // hands swinging, facing 30 degrees off +Z so the fit cannot rely on the axes.
   const float h = radians(30.0f);
@@ -58,42 +47,29 @@ TEST(BodyFootprint, PoseCapsuleHoldsEveryJointAndFollowsAStride) {
   joints[0].y = 0.05f;
   joints.back().y = 1.6f;
   const float margin = 0.08f;
-  const BodyVolume v = body_volume_from_pose(joints, margin, 0.12f);
+  const vec2 facing(std::sin(h), std::cos(h));
+  const BodyVolume v = body_volume_from_pose(joints, 2.0f * facing, margin, 0.12f);  // any length
   for (const vec3& j : joints) EXPECT_LE(sampled_core_distance(v, ground(j)), v.radius_m - margin + 1e-4f);
   EXPECT_FLOAT_EQ(v.y_min_m, 0.05f);
   EXPECT_FLOAT_EQ(v.y_max_m, 1.72f);
-  // Narrow across (shoulders and hands, not the stride) and long along the stride.
-  EXPECT_LT(2.0f * v.radius_m, 0.75f);
-  EXPECT_GT(glm::length(v.half_axis_m), 0.1f);
-  // The disc of old: the stride's half length plus the margin, about 0.52 m.
-  EXPECT_GT(v.reach_m(), 0.45f);
+  // Across the path: the hands' 0.5 m plus the margin each side; along it: the stride.
+  EXPECT_NEAR(2.0f * v.radius_m, 0.5f + 2.0f * margin, 1e-4f);
+  EXPECT_NEAR(std::abs(glm::dot(glm::normalize(v.half_axis_m), facing)), 1.0f, 1e-5f);
+  EXPECT_GT(glm::length(v.half_axis_m), 0.2f);
+  // A disc around the same joints (the body of old) is as wide as the stride: about 1 m.
+  EXPECT_LT(2.0f * v.radius_m, 0.7f);
 }
 
-TEST(BodyFootprint, CompactPoseIsNoWiderThanItself) {
-  std::vector<vec3> joints;  // a ring of 0.2 m radius: about as wide every way
+TEST(BodyFootprint, CompactPoseIsADisc) {
+  std::vector<vec3> joints;  // a ring of 0.2 m radius
   for (int i = 0; i < 12; ++i) {
     const float a = kTwoPi * static_cast<float>(i) / 12.0f;
     joints.push_back({0.2f * std::cos(a), 0.1f * static_cast<float>(i), 0.2f * std::sin(a)});
   }
-  const BodyVolume v = body_volume_from_pose(joints, 0.08f, 0.1f);
+  const BodyVolume v = body_volume_from_pose(joints, vec2(0.0f, 1.0f), 0.08f, 0.1f);
   for (const vec3& j : joints) EXPECT_LE(sampled_core_distance(v, ground(j)), v.radius_m - 0.08f + 1e-4f);
-  EXPECT_LE(v.radius_m, 0.28f + 1e-4f);
-  EXPECT_LE(v.reach_m(), 0.28f + 0.06f);  // the ring's flats are 1.4 cm inside its corners
-}
-
-TEST(BodyFootprint, EnclosingVolumeHoldsBoth) {
-  SplitMix64 rng{5};
-  for (int trial = 0; trial < 200; ++trial) {
-    BodyVolume a = random_capsule(rng, 1.0f), b = random_capsule(rng, 1.0f);
-    a.y_min_m = -0.01f, a.y_max_m = 1.7f, b.y_min_m = 0.0f, b.y_max_m = 1.8f;
-    const BodyVolume e = enclosing_volume(a, b);
-    EXPECT_TRUE(holds(e, a)) << "trial " << trial;
-    EXPECT_TRUE(holds(e, b)) << "trial " << trial;
-    EXPECT_FLOAT_EQ(e.y_min_m, -0.01f);
-    EXPECT_FLOAT_EQ(e.y_max_m, 1.8f);
-    // Not absurdly loose: within the disc around both.
-    EXPECT_LE(e.reach_m(), glm::length(a.center_m - b.center_m) + a.reach_m() + b.reach_m() + 1e-4f);
-  }
+  EXPECT_LT(glm::length(v.half_axis_m), 1e-3f);
+  EXPECT_NEAR(v.reach_m(), 0.28f, 1e-3f);
 }
 
 TEST(BodyFootprint, SegmentDistanceMatchesSampling) {
