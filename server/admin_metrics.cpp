@@ -72,6 +72,8 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_sessions_timed_out_total", "counter", "Sessions dropped for silence.", static_cast<double>(m.sessions_timed_out));
   line(out, "foresight_sessions_closed_total", "counter", "Clean disconnects.", static_cast<double>(m.sessions_closed));
   line(out, "foresight_refused_total", "counter", "Connects refused (version, library, full, cookie).", static_cast<double>(m.refused));
+  line(out, "foresight_spawn_refusals_total", "counter", "Joins refused for want of a free place near the spawns.",
+       static_cast<double>(m.spawn_refusals));
   line(out, "foresight_challenges_capped_total", "counter", "Connect requests ignored over the per-tick cap.", static_cast<double>(m.challenges_capped));
   line(out, "foresight_avatar_contacts_total", "counter", "Ticks with two avatars' bodies overlapping (must stay 0).", static_cast<double>(m.avatar_contacts));
   line(out, "foresight_fallbacks_total", "counter", "Segment ends with nothing feasible ahead.", static_cast<double>(m.fallbacks));

@@ -1,5 +1,7 @@
 #include "server.hpp"
 
+#include "library/body_fit.hpp"
+
 #include "player.hpp"
 
 #include "protocol/input_packet.hpp"
@@ -72,6 +74,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   if (!socket_.open(config_.bind_address, config_.port, error)) return false;
   receive_buffer_.resize(protocol::kMaxDatagramBytes + 1);
   reservations_.configure(scene_.bounds);
+  if (!plan_spawn_places(error)) return false;
   workers_ = std::make_unique<LookaheadWorkers>(config_.threads);
   grow_deadline_.resize(static_cast<size_t>(config_.threads));
   players_.reserve(static_cast<size_t>(config_.max_players));
@@ -249,7 +252,7 @@ void Server::publish_admin(Clock::time_point now) {
   m.packets_in = c.packets_in, m.bytes_in = c.bytes_in, m.packets_out = c.packets_out, m.bytes_out = c.bytes_out;
   m.send_failures = c.send_failures;
   m.sessions_opened = c.sessions_opened, m.sessions_timed_out = c.sessions_timed_out;
-  m.sessions_closed = c.sessions_closed, m.refused = c.refused;
+  m.sessions_closed = c.sessions_closed, m.refused = c.refused, m.spawn_refusals = c.spawn_refusals;
   m.challenges_sent = c.challenges_sent, m.challenges_capped = c.challenges_capped, m.joins_deferred = c.joins_deferred;
   m.avatar_contacts = c.avatar_contacts, m.fallbacks = c.fallbacks, m.steered_frames = c.steered_frames;
   m.fighter_strikes = c.fighter_strikes, m.fighter_hits = c.fighter_hits;
@@ -484,7 +487,9 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
   const protocol::Endpoint& from = join.endpoint;
   Placement spawn;
   if (!find_spawn(spawn)) {
-    send_refuse(from, wire::RefuseReason::ServerFull, "no free spawn place: try again later");
+    ++counters_.spawn_refusals;
+    send_refuse(from, wire::RefuseReason::NoSpawnPlace,
+                "no free spawn place: every place near the spawns is taken by other avatars; try again later");
     return;
   }
   auto p = std::make_unique<Player>();
@@ -505,7 +510,8 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
   if (terrain_mode_) {
     p->terrain = std::make_unique<terrain::TerrainAvatar>();
     if (!terrain::terrain_avatar_init(*p->terrain, terrain_config_, scene_, spawn.pos_m, spawn.heading_rad)) {
-      send_refuse(from, wire::RefuseReason::ServerFull, "no ground at the free spawn place: try again later");
+      ++counters_.spawn_refusals;
+      send_refuse(from, wire::RefuseReason::NoSpawnPlace, "no ground at the free spawn place: try again later");
       return;
     }
   } else {
@@ -788,38 +794,76 @@ void Server::remove_player(size_t index) {
   players_.pop_back();
 }
 
-bool Server::find_spawn(Placement& out) const {
-  std::vector<Placement> around;
-  around.reserve(scene_.spawns.size());
-  for (const SpawnPoint& sp : scene_.spawns) around.push_back({sp.pos_m, sp.heading_rad});
-  return find_free_place(around, out);
-}
-
-bool Server::find_free_place(std::span<const Placement> around, Placement& out) const {
-  // Around the given points (in order), on rings 0.9 m apart: the first place where the idle
-  // segment is free of the scene and of every avatar's reservation.
-  const vec2 extent = scene_.bounds.max_m - scene_.bounds.min_m;
-  const int rings = static_cast<int>(std::ceil(std::max(extent.x, extent.y) / 0.9f));
-  for (int ring = 0; ring <= rings; ++ring) {
-    const int count = ring == 0 ? 1 : 6 * ring;
+std::vector<Placement> Server::free_places_around(std::span<const Placement> around, size_t max_places) const {
+  // Rings 0.25 m apart up to 8 m out, points 0.25 m apart along each ring, the rings of all the
+  // points interleaved so that every spawn's nearest places come first. At each point the first
+  // of four headings (the spawn's first) that fits: a body longer than wide may fit turned.
+  constexpr float kStep_m = 0.25f, kMaxRadius_m = 8.0f;
+  std::vector<Placement> places;
+  const int rings = static_cast<int>(kMaxRadius_m / kStep_m);
+  for (int ring = 0; ring <= rings && places.size() < max_places; ++ring) {
+    const float r = kStep_m * static_cast<float>(ring);
+    const int count = std::max(1, static_cast<int>(std::ceil(kTwoPi * r / kStep_m)));
     for (const Placement& centre : around) {
-      for (int k = 0; k < count; ++k) {
+      for (int k = 0; k < count && places.size() < max_places; ++k) {
         const float a = kTwoPi * static_cast<float>(k) / static_cast<float>(count);
-        const Placement p{centre.pos_m + 0.9f * static_cast<float>(ring) * vec2(std::sin(a), std::cos(a)),
-                          centre.heading_rad};
-        if (!scene_.bounds.contains(p.pos_m)) continue;
-        if (terrain_mode_) {
-          if (!terrain_place_free(p)) continue;
-        } else {
-          if (!segment_feasible(world_, library_.segment_shapes[static_cast<size_t>(spawn_segment_)], p)) continue;
-          if (reservations_.blocks(-1, library_, spawn_segment_, p)) continue;
+        for (int turn = 0; turn < 4; ++turn) {
+          const Placement p{centre.pos_m + r * vec2(std::sin(a), std::cos(a)),
+                            wrap_angle(centre.heading_rad + 0.5f * kPi * static_cast<float>(turn))};
+          if (!scene_.bounds.contains(p.pos_m)) break;
+          const bool free = terrain_mode_ ? terrain_place_free(p)
+                                          : segment_feasible(world_, library_.segment_shapes[static_cast<size_t>(spawn_segment_)], p);
+          if (free) {
+            places.push_back(p);
+            break;
+          }
         }
-        out = p;
-        return true;
       }
     }
   }
+  return places;
+}
+
+bool Server::place_is_free_now(const Placement& p) const {
+  return terrain_mode_ ? terrain_place_free(p) : !reservations_.blocks(-1, library_, spawn_segment_, p);
+}
+
+bool Server::find_spawn(Placement& out) const {
+  for (const Placement& p : spawn_places_) {
+    if (place_is_free_now(p)) {
+      out = p;
+      return true;
+    }
+  }
   return false;
+}
+
+bool Server::find_free_place(std::span<const Placement> around, Placement& out) const {
+  for (const Placement& p : free_places_around(around, 256)) {
+    if (place_is_free_now(p)) {
+      out = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool Server::plan_spawn_places(std::string& error) {
+  std::vector<Placement> around;
+  for (const SpawnPoint& sp : scene_.spawns) {
+    const Placement at{sp.pos_m, sp.heading_rad};
+    around.push_back(at);
+    if (terrain_mode_) continue;
+    if (const std::string why = body_fit_problem(library_, scene_, world_, spawn_segment_, at); !why.empty())
+      std::fprintf(stderr, "foresight-server: spawn '%s' at (%.2f, %.2f): %s; players start at the nearest free place\n",
+                   sp.name.c_str(), static_cast<double>(sp.pos_m.x), static_cast<double>(sp.pos_m.y), why.c_str());
+  }
+  spawn_places_ = free_places_around(around, kMaxSpawnPlaces);
+  if (spawn_places_.empty()) {
+    error = "scene '" + scene_.name + "': no place within 8 m of any spawn fits the avatar's standing body";
+    return false;
+  }
+  return true;
 }
 
 void Server::advance(TickRecord& record) {

@@ -64,6 +64,7 @@ struct ServerCounters {
   uint64_t sessions_timed_out = 0;
   uint64_t sessions_closed = 0;     ///< Clean disconnects.
   uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
+  uint64_t spawn_refusals = 0;      ///< Of those, joins with no free place near the spawns.
   uint64_t avatar_contacts = 0;     ///< Ticks with two avatars' bodies overlapping (must stay 0).
   uint64_t fallbacks = 0;
   uint64_t steered_frames = 0;      ///< Frames steering mode turned an avatar's playing motion.
@@ -185,7 +186,12 @@ class Server {
   void log_status() const;
   void publish_admin(Clock::time_point now);
   std::string admin_set(const std::string& key, const std::string& value);
-  bool find_spawn(Placement& out) const;
+  /// Where avatars may stand near `around` (the scene allows it; other avatars not considered),
+  /// nearest first, at most `max_places`.
+  std::vector<Placement> free_places_around(std::span<const Placement> around, size_t max_places) const;
+  bool place_is_free_now(const Placement& p) const;  ///< No avatar's reservation (or body) there.
+  bool plan_spawn_places(std::string& error);          ///< spawn_places_, warnings for spawns that do not fit.
+  bool find_spawn(Placement& out) const;               ///< The first of spawn_places_ free now.
   bool find_free_place(std::span<const Placement> around, Placement& out) const;
   Player* find_player(const protocol::Endpoint& from);
   void send(std::span<const uint8_t> bytes, const protocol::Endpoint& to);
@@ -196,6 +202,10 @@ class Server {
   CollisionWorld world_;
   MotionTreeConfig tree_config_;
   int spawn_segment_ = -1;
+  /// Places near the scene's spawns where the standing body fits the scene, nearest first: a
+  /// join only checks them against the other avatars (bounded work per join, however full).
+  static constexpr size_t kMaxSpawnPlaces = 8192;
+  std::vector<Placement> spawn_places_;
   int head_joint_ = -1;  ///< The library skeleton's head (fighters aim at it).
   Pose head_pose_;       ///< Scratch for head_position.
   std::vector<vec3> head_global_pos_;

@@ -1,5 +1,7 @@
 #include "lookahead/recording_generator.hpp"
 
+#include "library/body_fit.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -61,6 +63,11 @@ bool recording_generate(const MotionLibrary& library, const Scene& scene, const 
   }
 
   const Placement start{spawn->pos_m, spawn->heading_rad};
+  if (const std::string why = body_fit_problem(library, scene, world, find_fallback_segment(library), start);
+      !why.empty()) {
+    error = scene.name + ": spawn \"" + spawn->name + "\": " + why;
+    return false;
+  }
   ScriptedPlayer player;
   if (!player.plan(library, scene, world, start, goal->pos_m, config.player_config(), error)) {
     error = scene.name + ": spawn \"" + spawn->name + "\" -> goal \"" + goal->name + "\": " + error;

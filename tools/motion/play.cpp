@@ -3,6 +3,7 @@
 // avatar out of the walls. Every shown pose is re-checked from FK (pose_check.hpp) and the run
 // fails if any collides.
 #include "commands.hpp"
+#include "library/body_fit.hpp"
 #include "library/pose_check.hpp"
 #include "lookahead/lookahead_avatar.hpp"
 #include "world/data_paths.hpp"
@@ -34,8 +35,9 @@ int command_play(const MotionSource& source, const PlayOptions& o) {
       if (segment_feasible(world, lib.segment_shapes[s], start)) start_segment = s;
   }
   if (start_segment < 0) {
-    std::fprintf(stderr, "foresight-motion: no segment is free at the spawn of %s\n",
-                 scene.name.c_str());
+    const std::string why = body_fit_problem(lib, scene, world, std::max(find_fallback_segment(lib), 0), start);
+    std::fprintf(stderr, "foresight-motion: no segment is free at the spawn of %s: %s\n", scene.name.c_str(),
+                 why.c_str());
     return 1;
   }
   LookaheadAvatar avatar(lib, world, MotionTreeConfig{}, start_segment, start);

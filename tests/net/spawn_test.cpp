@@ -1,0 +1,88 @@
+// Spawns are checked for the body that must stand there: a spawn too close to a wall is reported
+// with the room it lacks, a join still finds the nearest free place (searched finely: 0.25 m
+// rings, four headings), and a join with no free place left is refused as NoSpawnPlace.
+#include "raw_client.hpp"
+#include "support/test_paths.hpp"
+
+#include "library/body_fit.hpp"
+#include "lookahead/lookahead_avatar.hpp"
+#include "world/data_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace foresight {
+namespace {
+
+using test::RawClient;
+
+/// A 3 x 3 m room (walls 0.2 m thick inside the bounds), its spawn 0.25 m from the west wall.
+std::filesystem::path write_small_room() {
+  const std::filesystem::path path = test::scratch_dir() / "small_room.json";
+  std::ofstream(path) << R"({"format": "foresight-scene", "version": 1, "name": "small-room",
+    "bounds": {"min": [0, 0], "max": [3.4, 3.4]},
+    "boxes": [
+      {"kind": "wall", "name": "west", "min": [0, 0, 0], "max": [0.2, 2.5, 3.4]},
+      {"kind": "wall", "name": "east", "min": [3.2, 0, 0], "max": [3.4, 2.5, 3.4]},
+      {"kind": "wall", "name": "south", "min": [0.2, 0, 0], "max": [3.2, 2.5, 0.2]},
+      {"kind": "wall", "name": "north", "min": [0.2, 0, 3.2], "max": [3.2, 2.5, 3.4]}],
+    "spawns": [{"name": "by-the-wall", "pos": [0.45, 1.7], "heading_deg": 0}]})";
+  return path;
+}
+
+TEST(Spawn, ABodyThatDoesNotFitSaysWhatIsInTheWayAndByHowMuch) {
+  Scene scene;
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(scene_world_load(write_small_room().string(), scene, world, error)) << error;
+  const MotionLibrary lib = motion_library_default();
+  const int idle = find_fallback_segment(lib);
+  const Placement spawn{scene.spawns[0].pos_m, scene.spawns[0].heading_rad};
+  const std::string why = body_fit_problem(lib, scene, world, idle, spawn);
+  EXPECT_NE(why.find("overlaps wall 'west' by"), std::string::npos) << why;
+  // The idle body's half width beyond the 0.25 m the spawn leaves.
+  const float lacks = 0.5f * segment_body(lib, idle).width_m - 0.25f;
+  char expected[32];
+  std::snprintf(expected, sizeof expected, "by %.2f m", static_cast<double>(lacks));
+  EXPECT_NE(why.find(expected), std::string::npos) << why << " (expected " << expected << ")";
+  // Moved by that much (and a millimetre), it fits.
+  EXPECT_EQ(body_fit_problem(lib, scene, world, idle, Placement{spawn.pos_m + vec2(lacks + 0.01f, 0.0f), 0.0f}), "");
+}
+
+TEST(Spawn, JoinsFindTheFreePlacesNearASpawnThatDoesNotFitThenAreRefusedAsNoSpawnPlace) {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  std::string error;
+  ASSERT_TRUE(server.start(test::test_server_config(write_small_room().string()), error)) << error;
+  Scene scene;
+  CollisionWorld world;
+  ASSERT_TRUE(scene_world_load(write_small_room().string(), scene, world, error)) << error;
+  std::vector<std::unique_ptr<RawClient>> clients;
+  int accepted = 0;
+  std::vector<uint8_t> refuse;
+  for (int i = 0; i < 40 && refuse.empty(); ++i) {
+    clients.push_back(std::make_unique<RawClient>(server.port()));
+    if (clients.back()->connect(server, now, server.library().content_hash, &refuse)) {
+      ++accepted;
+      const LookaheadAvatar* a = server.avatar(clients.back()->avatar);
+      ASSERT_NE(a, nullptr);
+      EXPECT_EQ(body_fit_problem(server.library(), scene, world, find_fallback_segment(server.library()),
+                                 a->playback().segment_start),
+                "")
+          << "placed where the body fits";
+    }
+  }
+  EXPECT_GE(accepted, 2) << "a 2.8 m square room holds more than one standing body";
+  ASSERT_FALSE(refuse.empty()) << "the room filled up";
+  protocol::DropReason reason;
+  const wire::Refuse* m = protocol::packet_read(refuse, reason)->message_as_Refuse();
+  ASSERT_NE(m, nullptr);
+  EXPECT_EQ(m->reason(), wire::RefuseReason::NoSpawnPlace);
+  EXPECT_NE(m->message()->str().find("no free spawn place"), std::string::npos) << m->message()->str();
+  EXPECT_EQ(server.counters().spawn_refusals, 1u);
+}
+
+}  // namespace
+}  // namespace foresight
