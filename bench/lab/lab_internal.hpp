@@ -24,7 +24,5 @@ inline std::string strategy_label(int s) {
   return std::to_string(s) + " " + std::string(strategy_name(static_cast<Strategy>(s)));
 }
 
-/// Strategies 3 and 4 read the learned statistics.
-inline bool uses_statistics(Strategy s) { return s == Strategy::kStatistic || s == Strategy::kHybrid; }
 
 }  // namespace foresight::lab::detail

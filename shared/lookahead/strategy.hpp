@@ -15,6 +15,9 @@ enum class Strategy : int {
 };
 inline constexpr int kNumStrategies = 5;
 
+/// Strategies 3 and 4 read statistics learned from a training recording (learn_statistics).
+inline bool uses_statistics(Strategy s) { return s == Strategy::kStatistic || s == Strategy::kHybrid; }
+
 /// "breadth-first", "command", "command-no-resort", "statistic", "hybrid".
 std::string_view strategy_name(Strategy s);
 /// Accepts the names above or the paper's numbers "0".."4"; nullopt otherwise.

@@ -21,6 +21,9 @@ struct SteerOptions {
   std::string strategy = "command";
   int64_t expansions_per_frame = ReplayConfig{}.expansions_per_frame;  // what recordings are made with
   double max_seconds = 300;
+  /// Training recording for strategies 3 and 4 (empty: the scene's shipped <scene>_train.json,
+  /// else the steered recording itself).
+  std::string train;
 };
 
 int command_info(const MotionSource& source, bool brief, bool json);

@@ -49,6 +49,10 @@ int main(int argc, char** argv) {
                     "Look-ahead expansions per frame")->check(CLI::Range(0, 100000000));
   steer->add_option("--max-seconds", steer_options.max_seconds, "Give up after this long")
       ->check(CLI::Range(1.0, 36000.0));
+  steer->add_option("--train", steer_options.train,
+                    "Training recording for strategies statistic and hybrid (default: the scene's "
+                    "<scene>_train.json, else the steered recording)")
+      ->check(CLI::ExistingFile);
 
   CLI11_PARSE(app, argc, argv);
   if (*info) return tools::command_info(source, brief, info_json);

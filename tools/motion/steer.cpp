@@ -7,6 +7,7 @@
 #include "world/scene_load.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <cstdio>
 
 namespace foresight::tools {
@@ -28,6 +29,27 @@ int command_steer(const MotionSource& source, const SteerOptions& o) {
   config.tree.strategy = strategy;
   config.expansions_per_frame = o.expansions_per_frame;
   config.max_seconds = o.max_seconds;
+  if (uses_statistics(strategy)) {
+    // As the lab does: learn from a training recording replayed with command matching.
+    std::filesystem::path train_path = o.train;
+    if (train_path.empty()) {
+      train_path = data_dir() / "recordings" / (recording.scene + "_train.json");
+      if (!std::filesystem::exists(train_path)) train_path = o.recording;
+    }
+    Recording train;
+    if (!recording_load(train_path, train, error)) {
+      std::fprintf(stderr, "foresight-motion: training recording: %s\n", error.c_str());
+      return 1;
+    }
+    ReplayConfig learn = config;
+    learn.tree.strategy = Strategy::kCommand;
+    config.statistics = learn_statistics(lib, world, train, learn);
+    if (config.statistics.empty()) {
+      std::fprintf(stderr, "foresight-motion: could not learn statistics from %s\n", train_path.string().c_str());
+      return 1;
+    }
+    std::printf("statistics learned from %s\n", train_path.string().c_str());
+  }
   ReplayRun run(lib, world, {recording.start_pos_m, recording.start_heading_rad},
                 recording.goal_pos_m, recording.goal_radius_m, config);
   if (!run.ok()) {
@@ -39,8 +61,10 @@ int command_steer(const MotionSource& source, const SteerOptions& o) {
               recording.name.c_str(), scene.name.c_str(), recording.samples.size(),
               recording.duration_s(), o.strategy.c_str(),
               static_cast<long long>(o.expansions_per_frame), 1.0 / config.frame_interval_s);
+  // Like replay_recording: the keys end with the recording, the avatar gets the grace after.
+  const double end_s = recording.duration_s() + config.grace_after_end_s;
   int last_segment = -1;
-  while (!run.done()) {
+  while (!run.done() && run.time_s() <= end_s) {
     const double t = run.time_s();
     const ControlInput input = recording_input_at(recording, t);
     run.frame(input);
