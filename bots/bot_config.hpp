@@ -33,6 +33,9 @@ struct BotFleetConfig {
   float dodge_radius_m = 2.0f;        ///< dodge: run from a fighter this close (twice as far when it strikes).
   double give_up_target_s = 60;       ///< A target not reached in this time is replaced.
   double stats_wait_s = 1.0;          ///< How long the end waits for the ServerStats answer.
+  /// --scene PATH: our copy of the server's scene file (used when its hash is the server's; else,
+  /// as when empty and data/scenes/ has no such scene, the server's file is fetched).
+  std::string scene_path;
   /// Two avatars whose roots are closer than this count as a contact.
   float contact_distance_m = 0.3f;
   /// A bot whose server went away (shut down, or silent) connects again after a back-off that

@@ -170,6 +170,8 @@ void BotFleet::frame(TimePoint now) {
       bot.conn.set_input(bot.brain.frame(same_scene ? world_ : unloaded_world(), config_, t_s, own,
                                          threatened ? &threat : nullptr, plans_left));
     }
+    // Fetch the server's scene (one part a frame) when no copy here is the server's.
+    if (i == scene_fetcher_ && !world_.loaded && ok()) fetch_scene(bot);
     // Send.
     bot.conn.flush(now);
     if (bot.conn.state() != bot.last_state) on_state_change(bot, i, now);
@@ -259,15 +261,46 @@ void BotFleet::on_accept(Bot& bot, int index) {
     }
     return;
   }
-  // The first Accept names the scene: load it once for every bot (a pause of one frame).
+  // The first Accept names the scene: load it once for every bot (a pause of one frame), from our
+  // own file when it is the server's, else fetched from the server by this bot (frame()).
+  if (scene_fetcher_ >= 0) return;
+  std::string text;
+  const protocol::AcceptInfo& accept = bot.conn.accept();
+  if (protocol::own_scene_file_matches(config_.scene_path, accept.scene, accept.scene_hash, text)) {
+    load_world(accept.scene, text, bot.conn.status_message());
+    return;
+  }
+  scene_fetcher_ = index;
+  log_once("scene '" + accept.scene + "': " + (text.empty() ? "no copy here" : "our copy differs from the server's") +
+           ", fetching the server's (" + std::to_string(accept.scene_bytes) + " bytes)");
+}
+
+void BotFleet::load_world(const std::string& scene_name, std::string_view text, const std::string& how) {
   std::string error;
-  if (!bot_world_load(world_, library_, bot.conn.accept().scene, config_.script, error)) {
+  if (!bot_world_load(world_, library_, scene_name, text, config_.script, error)) {
     error_ = error;
     log_once(error);
     return;
   }
-  log_once("scene '" + world_.scene_name + "' loaded (" + std::to_string(world_.scene.goals.size()) +
-           " goals); " + bot.conn.status_message());
+  log_once("scene '" + world_.scene_name + "' loaded (" + std::to_string(world_.scene.goals.size()) + " goals); " + how);
+}
+
+void BotFleet::fetch_scene(Bot& bot) {
+  const protocol::SceneDownload& d = bot.conn.scene_download();
+  if (!bot.conn.connected() || !d.started()) {
+    scene_fetcher_ = -1;  // the next Accept starts again
+    return;
+  }
+  if (!d.complete()) {
+    bot.conn.request_scene_part();
+    return;
+  }
+  if (!d.verified()) {
+    error_ = "the server's scene '" + bot.conn.accept().scene + "' arrived with another hash than its Accept named";
+    log_once(error_);
+    return;
+  }
+  load_world(bot.conn.accept().scene, d.bytes(), "fetched from the server");
 }
 
 void BotFleet::log_once(const std::string& line) {

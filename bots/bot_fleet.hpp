@@ -87,6 +87,8 @@ class BotFleet {
 
   void on_state_change(Bot& bot, int index, TimePoint now);
   void on_accept(Bot& bot, int index);
+  void fetch_scene(Bot& bot);
+  void load_world(const std::string& scene_name, std::string_view text, const std::string& how);
   void schedule_reconnect(Bot& bot, int index, TimePoint now);
   void log_once(const std::string& line);
 
@@ -96,6 +98,7 @@ class BotFleet {
   std::string error_;
   std::vector<std::unique_ptr<Bot>> bots_;
   BotWorld world_;
+  int scene_fetcher_ = -1;  ///< The bot fetching the server's scene file (none here matched), or -1.
   CollisionWatch watch_;
   int observer_ = -1;  ///< The bot whose view the watch checks.
   int epoll_fd_ = -1;

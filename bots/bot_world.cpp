@@ -2,6 +2,7 @@
 
 #include "lookahead/scripted_player.hpp"
 #include "world/data_paths.hpp"
+#include "world/scene_load.hpp"
 
 namespace foresight::bots {
 
@@ -10,11 +11,11 @@ std::filesystem::path bot_recording_path(const std::string& scene_name) {
 }
 
 bool bot_world_load(BotWorld& out, const MotionLibrary& library, const std::string& scene_name,
-                    BotScript script, std::string& error) {
+                    std::string_view text, BotScript script, std::string& error) {
   out.library = &library;
   out.loaded = false;
   out.scene_name = scene_name;
-  if (!scene_world_load(scene_name, out.scene, out.world, error)) {
+  if (!scene_parse(text, scene_name, out.scene, error) || !collision_world_build(out.scene, out.world, error)) {
     error = "cannot load the server's scene '" + scene_name + "': " + error;
     return false;
   }

@@ -8,8 +8,10 @@
 #include "world/collision_world.hpp"
 #include "world/scene.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace foresight::bots {
 
@@ -27,9 +29,9 @@ struct BotWorld {
 /// data/recordings/<scene>_eval.json
 std::filesystem::path bot_recording_path(const std::string& scene_name);
 
-/// Loads the scene (data_paths.hpp's scene_world_load: a built-in name or a path) and, for
-/// kReplay, its recording. False with a reason naming the file.
+/// Parses the scene file's `text` (the server's scene, own or fetched) with its collision world
+/// and, for kReplay, loads its recording. False with a reason.
 bool bot_world_load(BotWorld& out, const MotionLibrary& library, const std::string& scene_name,
-                    BotScript script, std::string& error);
+                    std::string_view text, BotScript script, std::string& error);
 
 }  // namespace foresight::bots

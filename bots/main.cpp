@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"replay", "goals", "wander", "dodge"}))
       ->capture_default_str();
   app.add_option("--seconds", config.seconds, "Run time")->check(CLI::Range(0.0, 1e6))->capture_default_str();
+  app.add_option("--scene", config.scene_path,
+                 "Our copy of the server's scene file (default: data/scenes/<its name>.json); fetched from "
+                 "the server when missing or different");
   app.add_option("--seed", config.seed, "Seed of goal choices and human behaviour")->capture_default_str();
   app.add_option("--rate", config.rate_hz, "Bot frames (Inputs) per second")
       ->check(CLI::Range(1.0, 240.0))

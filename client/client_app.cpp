@@ -18,6 +18,7 @@
 #include "protocol/client_connection.hpp"
 #include "protocol/protocol.hpp"
 #include "world/data_paths.hpp"
+#include "protocol/scene_transfer.hpp"
 #include "world/scene_load.hpp"
 
 #include <epoxy/gl.h>
@@ -155,6 +156,8 @@ class Session {
   }
   void connection_step(Clock::time_point now, double t);
   void on_connected();
+  void show_scene(const std::string& name, uint64_t hash, std::string_view text);
+  void fetch_scene();  ///< One part a frame until the server's scene file has arrived.
   void draw_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
   void draw_fighters(double t);
   void draw_terrain_avatars(double t, vec2& own_pos, float& own_heading, bool& own_seen);
@@ -199,26 +202,58 @@ class Session {
   std::vector<protocol::StrikeEventInfo> strike_events_;
   std::vector<vec3> fighter_local_pos_, fighter_global_pos_;  ///< FK scratch.
   std::vector<quat> fighter_global_rot_;
+  uint64_t scene_hash_ = 0;      ///< Of the scene shown (0: none, or an empty floor).
+  bool fetching_scene_ = false;  ///< The server's scene file is on its way.
 };
 
 void Session::on_connected() {
   const auto& a = connection_.accept();
   std::fprintf(stderr, "foresight-client: connected to %s: scene '%s', avatar %u, %u Hz ticks\n",
                options_.server_text.c_str(), a.scene.c_str(), a.avatar, a.tick_hz);
-  if (a.scene == scene_name_) return;
+  if (a.scene == scene_name_ && a.scene_hash == scene_hash_) return;
+  // Our own copy when it is the server's file; else fetched (connection_step) and drawn when it
+  // has arrived. Meanwhile: avatars on an empty floor.
+  fetching_scene_ = false;
+  std::string text;
+  if (protocol::own_scene_file_matches(options_.scene_path, a.scene, a.scene_hash, text)) {
+    show_scene(a.scene, a.scene_hash, text);
+    return;
+  }
+  std::fprintf(stderr, "foresight-client: scene '%s': %s, fetching the server's (%u bytes)\n", a.scene.c_str(),
+               text.empty() ? "no copy here" : "our copy differs from the server's", a.scene_bytes);
+  fetching_scene_ = true;
+  show_scene(a.scene, 0, {});
+}
+
+void Session::show_scene(const std::string& name, uint64_t hash, std::string_view text) {
   std::string error;
   Scene scene;
-  if (!scene_load(scene_path(a.scene), scene, error)) {
-    // Still playable: avatars on an empty floor.
-    std::fprintf(stderr, "foresight-client: cannot load scene '%s' (%s): drawing avatars only\n",
-                 a.scene.c_str(), error.c_str());
+  if (text.empty() || !scene_parse(text, name, scene, error)) {
+    if (!text.empty()) std::fprintf(stderr, "foresight-client: cannot load scene '%s' (%s): drawing avatars only\n",
+                                    name.c_str(), error.c_str());
     scene = Scene{};
     scene.bounds = {vec2(-20.0f), vec2(20.0f)};
   }
   scene_ = std::move(scene);
-  scene_name_ = a.scene;
+  scene_name_ = name;
+  scene_hash_ = hash;
   rig_.set_scene(&scene_);
   renderer_.set_scene(scene_);
+}
+
+void Session::fetch_scene() {
+  const protocol::SceneDownload& d = connection_.scene_download();
+  if (!d.complete()) {
+    connection_.request_scene_part();
+    return;
+  }
+  fetching_scene_ = false;
+  if (!d.verified()) {
+    std::fprintf(stderr, "foresight-client: the server's scene arrived with another hash than it named\n");
+    return;
+  }
+  std::fprintf(stderr, "foresight-client: scene '%s' fetched from the server\n", connection_.accept().scene.c_str());
+  show_scene(connection_.accept().scene, d.hash(), d.bytes());
 }
 
 void Session::connection_step(Clock::time_point now, double t) {
@@ -246,6 +281,7 @@ void Session::connection_step(Clock::time_point now, double t) {
     script_end_reported_ = false;
   }
   was_connected_ = connected;
+  if (connected && fetching_scene_) fetch_scene();
   const ClientState after = connection_.state();
   if (after != ClientState::kConnecting && after != ClientState::kConnected && !reported_down_) {
     // The server is gone, refused us or never answered: say so once, then retry on a timer.

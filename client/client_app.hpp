@@ -19,6 +19,9 @@ struct ClientOptions {
   protocol::Endpoint server;
   std::string server_text;  ///< As given (for messages).
   std::string name = "player";
+  /// --scene PATH: our copy of the server's scene file (used when its hash is the server's; else
+  /// the server's is fetched).
+  std::string scene_path;
   int width = 1280, height = 720;
   double delay_s = 0.100;          ///< Interpolation delay.
   std::string screenshot_path;     ///< Non-empty: render `frames` frames, write a PNG, exit.

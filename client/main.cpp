@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   options.server_text = "127.0.0.1:7777";
   double delay_ms = 100;
   app.add_option("--server", options.server_text, "Server address host:port")->capture_default_str();
+  app.add_option("--scene", options.scene_path,
+                 "Our copy of the server's scene file (default: data/scenes/<its name>.json); fetched from "
+                 "the server when missing or different");
   app.add_option("--name", options.name, "Player name sent to the server")->capture_default_str();
   app.add_option("--delay-ms", delay_ms, "Interpolation delay behind the newest snapshot")
       ->check(CLI::Range(0.0, 2000.0))

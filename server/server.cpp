@@ -1,11 +1,13 @@
 #include "server.hpp"
 
+#include "io/text_file.hpp"
 #include "library/body_fit.hpp"
 
 #include "player.hpp"
 
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
+#include "protocol/scene_transfer.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 
@@ -54,6 +56,13 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   config_.threads = std::clamp(config_.threads, 1, 64);
   config_.resort_interval_ticks = std::max(config_.resort_interval_ticks, 1);
   if (!scene_world_load(config_.scene, scene_, world_, error)) return false;
+  // The file's bytes as loaded: their hash goes in every Accept, and they are sent to clients
+  // that lack them (docs/PROTOCOL.md, "Scenes").
+  if (!text_file_read(scene_path(config_.scene), kMaxSceneFileBytes, scene_file_, error)) return false;
+  if (scene_file_.size() > protocol::kMaxFetchedSceneBytes)
+    std::fprintf(stderr, "foresight-server: the scene file is %zu bytes: clients fetch at most %u, so they must have it\n",
+                 scene_file_.size(), protocol::kMaxFetchedSceneBytes);
+  scene_hash_ = protocol::scene_file_hash(scene_file_);
   if (!motion_library_load(config_.motions, library_, error)) return false;
   spawn_segment_ = find_spawn_segment(library_);
   if (spawn_segment_ < 0) {
@@ -333,6 +342,7 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
     case Message::Disconnect:
     case Message::StatsRequest:
     case Message::TreeRequest:  // only inside a Sealed message: anyone could have sent this
+    case Message::SceneRequest:
       counters_.drops.add(protocol::DropReason::kUnauthenticated);
       return;
     default: counters_.drops.add(protocol::DropReason::kUnexpected); return;
@@ -369,6 +379,7 @@ void Server::handle_session(Player& p, const wire::Packet& packet, Clock::time_p
   if (auto* m = packet.message_as_Disconnect()) session = m->session();
   if (auto* m = packet.message_as_StatsRequest()) session = m->session();
   if (auto* m = packet.message_as_TreeRequest()) session = m->session();
+  if (auto* m = packet.message_as_SceneRequest()) session = m->session();
   if (p.session != session) {  // sealed by this session's key, yet naming another
     counters_.drops.add(protocol::DropReason::kUnexpected);
     return;
@@ -379,6 +390,7 @@ void Server::handle_session(Player& p, const wire::Packet& packet, Clock::time_p
     case Message::Heartbeat: p.echo_client_time_ms = packet.message_as_Heartbeat()->client_time_ms(); break;
     case Message::StatsRequest: send_stats(p); break;
     case Message::TreeRequest: send_tree(p); break;
+    case Message::SceneRequest: send_scene_part(p, packet.message_as_SceneRequest()->offset()); break;
     case Message::Disconnect:
       ++counters_.sessions_closed;
       for (size_t i = 0; i < players_.size(); ++i)
@@ -581,8 +593,22 @@ void Server::send_accept(const Player& p) {
   const auto key = fbb.CreateVector(p.server_public_key.data(), p.server_public_key.size());
   send(writer_.finish(wire::CreateAccept(fbb, p.session, p.avatar_id, scene, lib, library_.content_hash,
                                          static_cast<uint16_t>(config_.tick_hz),
-                                         static_cast<uint16_t>(config_.snapshot_hz), key)),
+                                         static_cast<uint16_t>(config_.snapshot_hz), key, scene_hash_,
+                                         static_cast<uint32_t>(scene_file_.size()))),
        p.endpoint);
+}
+
+void Server::send_scene_part(Player& p, uint32_t offset) {
+  if (offset >= scene_file_.size()) {
+    counters_.drops.add(protocol::DropReason::kUnexpected);
+    return;
+  }
+  const uint32_t n = std::min<uint32_t>(protocol::kScenePartBytes, static_cast<uint32_t>(scene_file_.size()) - offset);
+  auto& fbb = writer_.begin();
+  const auto data = fbb.CreateVector(reinterpret_cast<const uint8_t*>(scene_file_.data()) + offset, n);
+  send_sealed(p, writer_.finish(wire::CreateScenePart(fbb, scene_hash_, static_cast<uint32_t>(scene_file_.size()),
+                                                      offset, data)));
+  ++counters_.scene_parts_sent;
 }
 
 void Server::send_sealed(Player& p, std::span<const uint8_t> inner) {

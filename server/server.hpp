@@ -65,6 +65,7 @@ struct ServerCounters {
   uint64_t sessions_closed = 0;     ///< Clean disconnects.
   uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
   uint64_t spawn_refusals = 0;      ///< Of those, joins with no free place near the spawns.
+  uint64_t scene_parts_sent = 0;    ///< ScenePart answers to clients fetching the scene file.
   uint64_t avatar_contacts = 0;     ///< Ticks with two avatars' bodies overlapping (must stay 0).
   uint64_t fallbacks = 0;
   uint64_t steered_frames = 0;      ///< Frames steering mode turned an avatar's playing motion.
@@ -164,6 +165,7 @@ class Server {
   void send_sealed(Player& p, std::span<const uint8_t> inner);
   void handle_session(Player& p, const wire::Packet& packet, Clock::time_point now);
   void send_tree(Player& p);
+  void send_scene_part(Player& p, uint32_t offset);  ///< One ScenePart from `offset` (SceneRequest).
   void expire(Clock::time_point now);
   void remove_player(size_t index);
   void advance(TickRecord& record);
@@ -206,6 +208,8 @@ class Server {
   /// join only checks them against the other avatars (bounded work per join, however full).
   static constexpr size_t kMaxSpawnPlaces = 8192;
   std::vector<Placement> spawn_places_;
+  std::string scene_file_;   ///< The scene file's bytes, sent to clients that lack them.
+  uint64_t scene_hash_ = 0;  ///< protocol::scene_file_hash(scene_file_), in every Accept.
   int head_joint_ = -1;  ///< The library skeleton's head (fighters aim at it).
   Pose head_pose_;       ///< Scratch for head_position.
   std::vector<vec3> head_global_pos_;

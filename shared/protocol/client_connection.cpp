@@ -227,6 +227,11 @@ void ClientConnection::handle(const wire::Packet& packet, TimePoint now, bool se
       last_heard_ = now;
       on_tree(*packet.message_as_TreeSummary());
       return;
+    case wire::Message::ScenePart:
+      if (!connected) break;
+      last_heard_ = now;
+      scene_download_.add(*packet.message_as_ScenePart());  // out-of-order or repeated parts are ignored
+      return;
     case wire::Message::Disconnect:
       if (connected && packet.message_as_Disconnect()->session() == accept_.session) {
         set_state(ClientState::kServerGone, "the server ended the session");
@@ -273,6 +278,9 @@ void ClientConnection::on_accept(const wire::Accept& m, TimePoint now) {
   accept_.library_hash = m.library_hash();
   accept_.tick_hz = m.tick_hz();
   accept_.snapshot_hz = m.snapshot_hz();
+  accept_.scene_hash = m.scene_hash();
+  accept_.scene_bytes = m.scene_bytes();
+  scene_download_.start(accept_.scene_hash, accept_.scene_bytes);
   accepted_at_ = last_heard_ = now;
   // The first Input goes out with the next flush(), whatever the input interval.
   last_input_sent_ = last_packet_sent_ = now - std::chrono::hours(1);
@@ -574,6 +582,11 @@ void ClientConnection::request_stats() {
 
 void ClientConnection::request_tree() {
   if (state_ == ClientState::kConnected) send(write_tree_request(writer_, accept_.session));
+}
+
+void ClientConnection::request_scene_part() {
+  if (state_ == ClientState::kConnected && scene_download_.started() && !scene_download_.complete())
+    send(write_scene_request(writer_, accept_.session, scene_download_.next_offset()));
 }
 
 void ClientConnection::disconnect() {

@@ -22,6 +22,7 @@
 #include "protocol/session_crypto.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/protocol.hpp"
+#include "protocol/scene_transfer.hpp"
 #include "protocol/udp_socket.hpp"
 
 #include <array>
@@ -68,6 +69,8 @@ struct AcceptInfo {
   uint64_t library_hash = 0;
   uint16_t tick_hz = 0;
   uint16_t snapshot_hz = 0;
+  uint64_t scene_hash = 0;   ///< Of the server's scene file (protocol::scene_file_hash).
+  uint32_t scene_bytes = 0;  ///< Its size.
 };
 
 struct RefuseInfo {
@@ -176,6 +179,11 @@ class ClientConnection {
   void request_stats();
   /// Asks the server for a summary of our feasible motion tree (see tree_count()).
   void request_tree();
+  /// Asks for the next part of the server's scene file (call until scene_download().verified();
+  /// a request whose answer is lost is simply made again). No-op when complete or not connected.
+  void request_scene_part();
+  /// The server's scene file as fetched so far (started at the Accept).
+  const SceneDownload& scene_download() const { return scene_download_; }
   /// Ends the session: sends Disconnect three times (it is not acknowledged), then kClosed.
   void disconnect();
 
@@ -277,6 +285,7 @@ class ClientConnection {
   TimePoint next_handshake_send_{};
   AcceptInfo accept_;
   RefuseInfo refuse_;
+  SceneDownload scene_download_;
 
   // Input.
   ControlInput held_;

@@ -98,4 +98,9 @@ std::span<const uint8_t> write_tree_request(PacketWriter& w, uint32_t session) {
   return w.finish(wire::CreateTreeRequest(fbb, session));
 }
 
+std::span<const uint8_t> write_scene_request(PacketWriter& w, uint32_t session, uint32_t offset) {
+  auto& fbb = w.begin();
+  return w.finish(wire::CreateSceneRequest(fbb, session, offset));
+}
+
 }  // namespace foresight::protocol

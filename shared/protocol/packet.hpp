@@ -76,5 +76,6 @@ std::span<const uint8_t> write_heartbeat(PacketWriter& w, uint32_t session, uint
 std::span<const uint8_t> write_disconnect(PacketWriter& w, uint32_t session);
 std::span<const uint8_t> write_stats_request(PacketWriter& w, uint32_t session);
 std::span<const uint8_t> write_tree_request(PacketWriter& w, uint32_t session);
+std::span<const uint8_t> write_scene_request(PacketWriter& w, uint32_t session, uint32_t offset);
 
 }  // namespace foresight::protocol

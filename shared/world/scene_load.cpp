@@ -17,7 +17,6 @@ using json_io::Reader;
 
 // Files larger than this are refused before reading: a 4096 x 4096 height field written with
 // short numbers is ~100 MB, so this leaves room without letting a stray file exhaust memory.
-constexpr std::uintmax_t kMaxSceneFileBytes = 512ull << 20;
 
 constexpr double kMaxHeadingDeg = 36000.0;
 constexpr double kMaxHeight_m = 10000.0;

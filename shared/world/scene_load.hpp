@@ -7,11 +7,15 @@
 // and for malformed JSON "<source>: invalid JSON at line L, column C: <parser message>".
 #include "world/scene.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
 
 namespace foresight {
+
+/// Largest scene file read.
+inline constexpr std::uintmax_t kMaxSceneFileBytes = 512ull << 20;
 
 /// Reads and parses a scene file; the error's source is the file name (no directories).
 bool scene_load(const std::filesystem::path& path, Scene& scene, std::string& error);
