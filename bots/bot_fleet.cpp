@@ -170,7 +170,9 @@ void BotFleet::frame(TimePoint now) {
       bot.conn.set_input(bot.brain.frame(same_scene ? world_ : unloaded_world(), config_, t_s, own,
                                          threatened ? &threat : nullptr, plans_left));
     }
-    // Fetch the server's scene (one part a frame) when no copy here is the server's.
+    // Fetch the server's scene (one part a frame) when no copy here is the server's; should the
+    // fetching bot have lost its session, the next connected bot starts again.
+    if (!world_.loaded && ok() && bot.conn.connected() && scene_fetcher_ < 0 && bot.accepted) find_scene(bot, i);
     if (i == scene_fetcher_ && !world_.loaded && ok()) fetch_scene(bot);
     // Send.
     bot.conn.flush(now);
@@ -261,9 +263,12 @@ void BotFleet::on_accept(Bot& bot, int index) {
     }
     return;
   }
+  if (scene_fetcher_ < 0) find_scene(bot, index);
+}
+
+void BotFleet::find_scene(Bot& bot, int index) {
   // The first Accept names the scene: load it once for every bot (a pause of one frame), from our
   // own file when it is the server's, else fetched from the server by this bot (frame()).
-  if (scene_fetcher_ >= 0) return;
   std::string text;
   const protocol::AcceptInfo& accept = bot.conn.accept();
   if (protocol::own_scene_file_matches(config_.scene_path, accept.scene, accept.scene_hash, text)) {
@@ -288,7 +293,7 @@ void BotFleet::load_world(const std::string& scene_name, std::string_view text, 
 void BotFleet::fetch_scene(Bot& bot) {
   const protocol::SceneDownload& d = bot.conn.scene_download();
   if (!bot.conn.connected() || !d.started()) {
-    scene_fetcher_ = -1;  // the next Accept starts again
+    scene_fetcher_ = -1;  // another connected bot takes over (frame())
     return;
   }
   if (!d.complete()) {

@@ -87,6 +87,7 @@ class BotFleet {
 
   void on_state_change(Bot& bot, int index, TimePoint now);
   void on_accept(Bot& bot, int index);
+  void find_scene(Bot& bot, int index);  ///< Own copy of the server's scene, or start fetching it.
   void fetch_scene(Bot& bot);
   void load_world(const std::string& scene_name, std::string_view text, const std::string& how);
   void schedule_reconnect(Bot& bot, int index, TimePoint now);

@@ -72,6 +72,7 @@ struct ServerCounters {
   uint64_t fighter_strikes = 0;     ///< Strikes judged.
   uint64_t fighter_hits = 0;
   uint64_t fighter_strike_failures = 0;  ///< Decided but not startable (logged).
+  uint64_t fighter_route_failures = 0;   ///< No route around the walls to a fighter's target.
   uint64_t terrain_steps = 0;     ///< Steps terrain avatars committed.
   uint64_t terrain_pivots = 0;    ///< Turns on the spot.
   uint64_t terrain_refusals = 0;  ///< Plans that failed or were vetoed (the avatar stood).
@@ -175,6 +176,8 @@ class Server {
   // NPC fighters (server_fighters.cpp).
   bool spawn_fighters(std::string& error);
   void think_fighters(Clock::time_point now);
+  /// Where fighter `npc` at `from` should walk to reach `to` (the target, or a route corner).
+  vec2 fighter_way(FighterNpc& npc, vec2 from, vec2 to, double now_s);
   void animate_fighters(int64_t frames_due);
   void collect_fighter_poses();
   void build_view(size_t receiver, bool interest);
@@ -207,6 +210,8 @@ class Server {
   /// Places near the scene's spawns where the standing body fits the scene, nearest first: a
   /// join only checks them against the other avatars (bounded work per join, however full).
   static constexpr size_t kMaxSpawnPlaces = 8192;
+  float fighter_route_clearance_m_ = 0.35f;  ///< Fighters' routes: the library's walker (spawn_fighters).
+  float fighter_route_height_m_ = 1.85f;
   std::vector<Placement> spawn_places_;
   std::string scene_file_;   ///< The scene file's bytes, sent to clients that lack them.
   uint64_t scene_hash_ = 0;  ///< protocol::scene_file_hash(scene_file_), in every Accept.

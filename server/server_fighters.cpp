@@ -5,6 +5,8 @@
 #include "anim/fk.hpp"
 #include "fighter/fighter_rig.hpp"
 #include "fighter/morphology.hpp"
+#include "lookahead/scene_path.hpp"
+#include "lookahead/scripted_player.hpp"
 #include "player.hpp"
 #include "protocol/quantize.hpp"
 
@@ -27,6 +29,8 @@ bool Server::spawn_fighters(std::string& error) {
 
   const int wanted = config_.fighters < 0 ? static_cast<int>(scene_.npcs.size()) : config_.fighters;
   if (wanted == 0) return true;
+  fighter_route_clearance_m_ = moving_body_clearance_m(library_);
+  fighter_route_height_m_ = lowest_moving_body_m(library_);
   const Clock::time_point t0 = Clock::now();
   fighter_assets_ = fighter_assets_build(library_, config_.fighter_strikes, config_.fighter_strikes_sidecar,
                                          config_.fighter_cache_dir, error);
@@ -139,6 +143,7 @@ void Server::think_fighters(Clock::time_point) {
       senses.has_target = true;
       senses.target_id = target->avatar_id;
       senses.target_pos_m = target->avatar->root().pos_m;
+      senses.way_m = fighter_way(npc, self.pos_m, senses.target_pos_m, now_s);
       senses.target_head_m = head_position(*target->avatar);
     }
     npc.target_id = senses.has_target ? senses.target_id : 0;
@@ -165,6 +170,28 @@ void Server::think_fighters(Clock::time_point) {
       f->input_changed = true;
     }
   }
+}
+
+vec2 Server::fighter_way(FighterNpc& npc, vec2 from, vec2 to, double now_s) {
+  // Straight at the target while a body of the walker's width sees it; else around the walls, to
+  // the farthest corner of the route in sight (a target behind a wall or a dead end in between).
+  if (scene_segment_clear(world_, from, to, fighter_route_clearance_m_, fighter_route_height_m_)) {
+    npc.route.clear();
+    return to;
+  }
+  if (npc.route.empty() || glm::length(to - npc.route_goal_m) > 1.0f || now_s - npc.route_at_s > 1.0) {
+    npc.route_at_s = now_s;
+    npc.route_goal_m = to;
+    if (!scene_route(world_, from, to, fighter_route_clearance_m_, fighter_route_height_m_, npc.route)) {
+      npc.route.clear();
+      ++counters_.fighter_route_failures;
+    }
+  }
+  if (npc.route.size() < 2) return to;
+  for (size_t i = npc.route.size() - 1; i >= 1; --i)
+    if (scene_segment_clear(world_, from, npc.route[i], fighter_route_clearance_m_, fighter_route_height_m_))
+      return npc.route[i];
+  return npc.route[1];
 }
 
 void Server::animate_fighters(int64_t frames_due) {

@@ -28,7 +28,8 @@ FighterDecision FighterBrain::think(const FighterSenses& s) {
   // target swaying at the edge does not make it start and stop every step.
   const bool was_following = phase_ == FighterPhase::kFollow;
   const bool far = distance > config_.reach_m + (was_following ? 0.0f : config_.follow_slack_m);
-  if (far && distance > 1e-4f) d.move_world = to_target / distance;
+  const vec2 to_way = s.way_m - s.self_pos_m;
+  if (far && glm::length(to_way) > 1e-4f) d.move_world = glm::normalize(to_way);
   if (phase_ != FighterPhase::kRecover) phase_ = far ? FighterPhase::kFollow : FighterPhase::kRest;
 
   // An order aims at the head where it was when ordered; the own policy at the head now.

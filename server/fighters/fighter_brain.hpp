@@ -30,6 +30,9 @@ struct FighterSenses {
   bool has_target = false;
   uint32_t target_id = 0;
   vec2 target_pos_m{0.0f};   ///< The target's ground position.
+  /// Where to walk to reach it: the target itself when the straight way is clear, else the next
+  /// corner of a route around the walls (FighterNpc::way_to). Distances are still to the target.
+  vec2 way_m{0.0f};
   vec3 target_head_m{0.0f};  ///< The target's head, world space.
 };
 

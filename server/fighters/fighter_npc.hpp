@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace foresight::server {
 
@@ -18,6 +19,11 @@ struct FighterNpc {
   int morphology = 0;  ///< Index into default_morphologies().
   std::string name;    ///< The scene's NPC spawn name.
   uint32_t target_id = 0;  ///< Avatar it follows (0: none).
+  /// The route around walls to the target (scene_route for the library's walker), replanned
+  /// when the target has moved a metre or a second has passed; empty while the way is straight.
+  std::vector<vec2> route;
+  vec2 route_goal_m{0.0f};
+  double route_at_s = -1e9;
   FighterMotion motion;
   // The strike playing (valid while motion.striking()).
   StrikeOrder strike_kind = StrikeOrder::kNone;

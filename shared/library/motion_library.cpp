@@ -193,11 +193,13 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
       shown[static_cast<size_t>(k)].insert(shown[static_cast<size_t>(k)].end(), global.begin(), global.end());
     }
   }
-  for (size_t si = 0; si < shown_joints.size(); ++si)
-    for (size_t k = 0; k < shown_joints[si].size(); ++k)
-      volumes[si][k] = body_volume_from_pose(shown_joints[si][k], facing_in(lib, lib.graph.segments[si],
-                                                                          lib.graph.segments[si].first_frame + static_cast<int>(k)),
-                                             lib.body_margin_m, lib.head_top_margin_m);
+  for (size_t si = 0; si < shown_joints.size(); ++si) {
+    const Segment& s = lib.graph.segments[si];
+    for (size_t k = 0; k < shown_joints[si].size(); ++k) {
+      const vec2 facing = facing_in(lib, s, s.first_frame + static_cast<int>(k));
+      volumes[si][k] = body_volume_from_pose(shown_joints[si][k], facing, lib.body_margin_m, lib.head_top_margin_m);
+    }
+  }
   for (const std::vector<BodyVolume>& frames : volumes) lib.segment_shapes.push_back(make_segment_shape(frames));
 
   lib.content_hash = content_hash_of(lib);

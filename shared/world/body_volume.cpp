@@ -1,10 +1,11 @@
 #include "world/body_volume.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
-#include <vector>
 
 namespace foresight {
+
 BodyVolume body_volume_from_pose(std::span<const vec3> joint_pos_m, vec2 facing, float margin_m,
                                  float head_top_m) {
   if (joint_pos_m.empty()) return {};

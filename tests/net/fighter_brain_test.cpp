@@ -15,6 +15,7 @@ FighterSenses senses_at(double t, vec2 target, bool can_strike = true) {
   s.has_target = true;
   s.target_id = 7;
   s.target_pos_m = target;
+  s.way_m = target;  // open ground: straight at it
   s.target_head_m = vec3(target.x, 1.6f, target.y);
   return s;
 }
@@ -92,6 +93,15 @@ TEST(FighterBrain, AnOrderOutOfReachLapses) {
   FighterSenses late = senses_at(1.5, vec2(0.0f, 0.8f));
   late.self_pos_m = vec2(0.0f, 3.5f);
   EXPECT_FALSE(brain.think(late).strike);
+}
+
+TEST(FighterBrain, WalksTowardsTheWayItIsGivenNotStraightAtTheTarget) {
+  FighterBrain brain{FighterBrainConfig{}};
+  FighterSenses s = senses_at(0.0, vec2(0.0f, 6.0f));
+  s.way_m = vec2(3.0f, 0.0f);  // a route corner off to the side (a wall between)
+  const FighterDecision d = brain.think(s);
+  EXPECT_NEAR(d.move_world.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(d.move_world.y, 0.0f, 1e-5f);
 }
 
 }  // namespace
