@@ -77,6 +77,42 @@ TEST(SceneTransfer, TheOwnCopyIsUsedWhenItIsTheServersFile) {
   EXPECT_EQ(p.match.server.counters().scene_parts_sent, 0u);
 }
 
+TEST(SceneTransfer, TheServerAnswersInRangeRequestsOfItsOwnSessionAndCountsTheRest) {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  std::string error;
+  ASSERT_TRUE(server.start(test::test_server_config("doorways"), error)) << error;
+  test::RawClient c(server.port());
+  ASSERT_TRUE(c.connect(server, now, server.library().content_hash));
+  const std::string file = read_all(data_dir() / "scenes" / "doorways.json");
+  protocol::PacketWriter w;
+  c.receive_all();  // the handshake's leftovers
+  c.send_session(protocol::write_scene_request(w, c.session, 1000));
+  server.run_tick(now += std::chrono::milliseconds(33));
+  const auto part = c.receive(wire::Message::ScenePart);
+  ASSERT_TRUE(part.has_value());
+  protocol::DropReason reason;
+  const wire::ScenePart* m = protocol::packet_read(*part, reason)->message_as_ScenePart();
+  EXPECT_EQ(m->scene_hash(), protocol::scene_file_hash(file));
+  EXPECT_EQ(m->total(), file.size());
+  EXPECT_EQ(m->offset(), 1000u);
+  ASSERT_NE(m->data(), nullptr);
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(m->data()->data()), m->data()->size()),
+            file.substr(1000, protocol::kScenePartBytes));
+  // Past the end: nothing back, counted.
+  const auto& drops = server.counters().drops.by_reason;
+  const uint64_t unexpected = drops[static_cast<size_t>(protocol::DropReason::kUnexpected)];
+  c.send_session(protocol::write_scene_request(w, c.session, static_cast<uint32_t>(file.size())));
+  server.run_tick(now += std::chrono::milliseconds(33));
+  EXPECT_FALSE(c.receive(wire::Message::ScenePart).has_value());
+  EXPECT_EQ(drops[static_cast<size_t>(protocol::DropReason::kUnexpected)], unexpected + 1);
+  // Unsealed (anyone could have sent it): nothing back.
+  c.send(protocol::write_scene_request(w, c.session, 0));
+  server.run_tick(now += std::chrono::milliseconds(33));
+  EXPECT_FALSE(c.receive(wire::Message::ScenePart).has_value());
+  EXPECT_EQ(server.counters().scene_parts_sent, 1u);
+}
+
 TEST(SceneTransfer, TheDownloadKeepsOnlyPartsInOrderWithTheRightHash) {
   const std::string text = "{\"a scene\": \"" + std::string(2500, 'x') + "\"}";
   const uint64_t hash = protocol::scene_file_hash(text);
