@@ -23,6 +23,8 @@ constexpr double kMaxStuckAfter_s = 600.0;
 // The radius of the thin body scene_route joins the exact start / goal to its grid with: a point
 // not free for it cannot be routed from or to, whatever the clearance.
 constexpr float kThinRadius_m = 0.05f;
+// Room a route leaves beside the library's walker to steer in (moving_body_clearance_m).
+constexpr float kSteerRoom_m = 0.03f;
 
 int key_of(vec2 camera_dir) {
   const float a = std::atan2(camera_dir.x, camera_dir.y);  // 0 = up, +pi/2 = right
@@ -97,7 +99,7 @@ float moving_body_clearance_m(const MotionLibrary& library) {
     if (library.graph.segments[s].tags & kTagLocomotion) widths.push_back(segment_body(library, s).width_m);
   if (widths.empty()) return 0.35f;
   std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
-  return 0.5f * widths[widths.size() / 2] + 0.03f;
+  return 0.5f * widths[widths.size() / 2] + kSteerRoom_m;
 }
 
 bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, const CollisionWorld& world,
@@ -146,7 +148,7 @@ bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, cons
     else
       error = "no route from " + point_text(start.pos_m) + " to " + point_text(goal) +
               " for a body of radius " + metres(clearance) + " and height " + metres(height) +
-              " (the library's walkers are " + metres(2.0f * (body_clearance - 0.03f)) +
+              " (the library's walkers are " + metres(2.0f * (body_clearance - kSteerRoom_m)) +
               " across): every way is narrower or lower, or walled off";
     return false;
   }
