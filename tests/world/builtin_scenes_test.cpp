@@ -9,7 +9,7 @@
 namespace foresight {
 namespace {
 
-const char* const kBuiltinScenes[] = {"maze", "obstacles", "terrain", "arena", "field"};
+const char* const kBuiltinScenes[] = {"maze", "obstacles", "terrain", "arena", "field", "doorways", "beams", "pillars", "dead_end"};
 
 const SceneBox* find_box(const Scene& scene, const std::string& name) {
   for (const SceneBox& b : scene.boxes)
@@ -42,6 +42,39 @@ TEST(BuiltinScenes, SpawnsCanWalkForward) {
       EXPECT_TRUE(segment_feasible(world, walk, {s.pos_m, s.heading_rad}));
     }
   }
+}
+
+// The scenes of real-level size are as narrow as a level designer draws them (issue 17): 0.9 m
+// doors, a 1.0 m corridor under 1.2 m beams, 0.8 m between pillars.
+TEST(BuiltinScenes, RealLevelPassagesAreAsNarrowAsLevelsDrawThem) {
+  const auto named = [](const Scene& scene, const std::string& name) -> const SceneBox& {
+    for (const SceneBox& b : scene.boxes)
+      if (b.name == name) return b;
+    ADD_FAILURE() << "no box " << name;
+    return scene.boxes.front();
+  };
+  const Scene doorways = test::load_builtin_scene("doorways");
+  for (int i = 1; i <= 3; ++i) {
+    const std::string wall = "cross-" + std::to_string(i);
+    EXPECT_NEAR(named(doorways, wall + "-b").min_m.x - named(doorways, wall + "-a").max_m.x, 0.9f, 1e-4f);
+  }
+  const Scene beams = test::load_builtin_scene("beams");
+  EXPECT_NEAR(named(beams, "corridor-east").min_m.x - named(beams, "corridor-west").max_m.x, 1.0f, 1e-4f);
+  int beam_count = 0;
+  for (const SceneBox& b : beams.boxes) {
+    if (b.kind != BoxKind::kBeam) continue;
+    EXPECT_FLOAT_EQ(b.min_m.y, 1.2f);
+    ++beam_count;
+  }
+  EXPECT_EQ(beam_count, 3);
+  const Scene pillars = test::load_builtin_scene("pillars");
+  float narrowest = 1e9f;
+  for (const SceneBox& a : pillars.boxes)
+    for (const SceneBox& b : pillars.boxes)
+      if (&a != &b && a.kind == BoxKind::kObstacle && b.kind == BoxKind::kObstacle && a.min_m.z == b.min_m.z &&
+          b.min_m.x > a.max_m.x)
+        narrowest = std::min(narrowest, b.min_m.x - a.max_m.x);
+  EXPECT_NEAR(narrowest, 0.8f, 1e-4f);
 }
 
 TEST(BuiltinScenes, MazeMatchesThePaper) {
