@@ -62,6 +62,7 @@ void add_run(NavigationResult& r, std::vector<double>& pooled, ControllerSummary
   row.time_to_goal_s = res.time_to_goal_s;
   row.seconds = res.seconds;
   row.fallbacks = res.fallbacks;
+  row.stalls = res.stalls;
   row.colliding_frames = res.colliding_frames;
   row.mean_command_angle_deg = res.mean_command_angle_deg;
   row.avg_tree_size = res.avg_tree_size;
@@ -76,6 +77,7 @@ void add_run(NavigationResult& r, std::vector<double>& pooled, ControllerSummary
   sum.recordings += 1;
   sum.goals_reached += res.reached_goal ? 1 : 0;
   sum.fallbacks += res.fallbacks;
+  sum.stalls += res.stalls;
   sum.colliding_frames += res.colliding_frames;
   pooled.insert(pooled.end(), ms.begin(), ms.end());
   if (spec.checks_collisions) r.lookahead_collisions += res.colliding_frames;
@@ -102,7 +104,7 @@ NavigationResult run_navigation(const LabScene& lab, const LabOptions& options,
   const std::vector<ControllerSpec> controllers = lab_controllers(options.tree);
   std::vector<std::vector<double>> pooled(controllers.size());
   for (const ControllerSpec& spec : controllers)
-    r.summary.push_back({spec.name, spec.lookahead, spec.checks_collisions, 0, 0, 0, 0, 0, 0.0, 0.0});
+    r.summary.push_back({.controller = spec.name, .lookahead = spec.lookahead, .checks_collisions = spec.checks_collisions});
   const std::pair<const char*, const Recording*> recordings[] = {{"train", &lab.train},
                                                                   {"eval", &lab.eval}};
   for (const auto& [label, rec] : recordings) {
@@ -152,7 +154,7 @@ NavigationResult run_closed_loop_navigation(const LabScene& lab, const LabOption
   const std::vector<ControllerSpec> controllers = lab_controllers(options.tree);
   std::vector<std::vector<double>> pooled(controllers.size());
   for (const ControllerSpec& spec : controllers)
-    r.summary.push_back({spec.name, spec.lookahead, spec.checks_collisions, 0, 0, 0, 0, 0, 0.0, 0.0});
+    r.summary.push_back({.controller = spec.name, .lookahead = spec.lookahead, .checks_collisions = spec.checks_collisions});
   // The responsive controller, whose p95 the bar is read from, gets more seeds: its p95 sits on a
   // flat shoulder of the distribution, so twenty runs' figure moves by a frame or two with the
   // sample (docs/LAB.md). Its extra runs are fast (small trees).

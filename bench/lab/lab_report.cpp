@@ -294,6 +294,7 @@ std::string navigation_text(const NavigationResult& n) {
   for (const ControllerSummary& s : n.summary)
     out += "  " + pad(s.controller, 31, false) + "  goals " + pad(std::to_string(s.goals_reached) + "/" +
            std::to_string(s.recordings), 5) + "  fallbacks " + pad(std::to_string(s.fallbacks), 5) +
+           "  stalls " + pad(std::to_string(s.stalls), 4) +
            "  responses " + pad(std::to_string(s.responses), 4) + "  p50 " + pad(fmt("%.0f", s.response_ms_p50), 5) +
            " ms  p95 " + pad(fmt("%.0f", s.response_ms_p95), 5) + " ms  " +
            (s.response_ms_p95 < n.response_target_ms ? "meets" : "MISSES") + " target\n";
@@ -394,7 +395,8 @@ std::string lab_json(const LabResult& r) {
     return json_array(nav.summary, [](const ControllerSummary& s) {
       return "{\"name\":" + json_string(s.controller) + ",\"goals_reached\":" +
              std::to_string(s.goals_reached) + ",\"recordings\":" + std::to_string(s.recordings) +
-             ",\"fallbacks\":" + std::to_string(s.fallbacks) + ",\"colliding_frames\":" +
+             ",\"fallbacks\":" + std::to_string(s.fallbacks) + ",\"stalls\":" + std::to_string(s.stalls) +
+             ",\"colliding_frames\":" +
              std::to_string(s.colliding_frames) + ",\"response_ms_p50\":" +
              json_number(s.response_ms_p50, 1) + ",\"response_ms_p95\":" +
              json_number(s.response_ms_p95, 1) + "}";

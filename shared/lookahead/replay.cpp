@@ -84,6 +84,7 @@ void ReplayRun::frame(const ControlInput& input) {
   const vec2 pos = avatar_->root().pos_m;
   result_.path.push_back(pos);
   measure(t);
+  count_stalls(t, pos, glm::length(control_world_direction(input)) > 0.0f);
   ++frame_;
   result_.seconds = static_cast<double>(frame_) * config_.frame_interval_s;
 
@@ -93,6 +94,21 @@ void ReplayRun::frame(const ControlInput& input) {
     if (config_.stop_at_goal) done_ = true;
   }
   if (time_s() > config_.max_seconds) done_ = true;
+}
+
+void ReplayRun::count_stalls(double t, vec2 pos, bool key_held) {
+  if (!key_held) {
+    stall_watch_ = false;  // a player standing still is not stalled
+    return;
+  }
+  if (!stall_watch_ || glm::length(pos - stall_from_) > kStallProgress_m) {
+    stall_watch_ = true;
+    stall_from_ = pos;
+    stall_since_s_ = t;
+  } else if (t - stall_since_s_ >= kStallSeconds) {
+    ++result_.stalls;
+    stall_since_s_ = t;  // the next stall needs another kStallSeconds
+  }
 }
 
 // The pose actually shown, from FK (blends included), against the scene: the tree's precomputed

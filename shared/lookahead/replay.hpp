@@ -51,11 +51,17 @@ struct Response {
   bool operator==(const Response&) const = default;
 };
 
+inline constexpr double kStallSeconds = 3.0;
+inline constexpr float kStallProgress_m = 0.3f;
+
 struct ReplayResult {
   bool reached_goal = false;
   double time_to_goal_s = 0;  ///< t_k of the first display frame with the root in the goal.
   double seconds = 0;         ///< Simulated time replayed (display frames * interval).
   int fallbacks = 0;
+  /// Stalls: a key held for kStallSeconds while the root got no kStallProgress_m from where it
+  /// was (wedged, or dithering in place); each such stretch counts once.
+  int stalls = 0;
   int64_t colliding_frames = 0;  ///< Shown poses re-checked from FK (must be 0).
   double avg_tree_size = 0;      ///< Mean over display frames of tree.num_nodes() after growing.
   /// Mean angle between the commanded world direction and the avatar's velocity (root
@@ -99,6 +105,7 @@ class ReplayRun {
  private:
   void check_shown_pose();
   void measure(double t_s);
+  void count_stalls(double t_s, vec2 pos, bool key_held);
 
   const MotionLibrary& library_;
   const CollisionWorld& world_;
@@ -113,6 +120,9 @@ class ReplayRun {
   ReplayResult result_;
   // Metrics.
   double tree_size_sum_ = 0;
+  bool stall_watch_ = false;  ///< A key is held: stall_from_ is where progress is measured from.
+  vec2 stall_from_{0.0f};
+  double stall_since_s_ = 0;
   double angle_sum_deg_ = 0;
   int64_t angle_frames_ = 0;
   int velocity_window_ = 6;  // display frames in ~0.2 s

@@ -66,6 +66,32 @@ TEST(Replay, ShippedRecordingsReachTheirGoalsWithoutCollisions) {
   }
 }
 
+// A key held against a wall is a stall (no 0.3 m of progress in 3 s), counted once per 3 s; a
+// player who holds nothing is not stalled.
+TEST(Replay, AKeyHeldIntoAWallCountsAsStallsAndStandingStillDoesNot) {
+  const auto& lib = default_library();
+  const auto& maze = loaded_scene("maze");
+  const SpawnPoint& spawn = maze.scene.spawns.front();
+  ReplayConfig config;
+  config.max_seconds = 20;
+  config.stop_at_goal = false;
+  const auto run_holding = [&](vec2 camera_dir) {
+    ReplayRun run(lib, maze.world, Placement{spawn.pos_m, spawn.heading_rad}, vec2(100.0f), 0.5f, config);
+    EXPECT_TRUE(run.ok()) << run.error();
+    ControlInput in;
+    in.camera_dir = camera_dir;
+    in.camera_yaw_rad = spawn.heading_rad;  // the camera behind the avatar: "forward" is its facing
+    while (!run.done()) run.frame(in);
+    return run.finish();
+  };
+  // Backwards from the spawn is the maze's outer wall, 1 m behind it: the avatar turns to it and
+  // then can go nowhere for most of the 20 s.
+  const ReplayResult into_wall = run_holding(vec2(0.0f, -1.0f));
+  EXPECT_GE(into_wall.stalls, 3) << "about 15 s held against the wall";
+  EXPECT_LE(into_wall.stalls, 6);
+  EXPECT_EQ(run_holding(vec2(0.0f)).stalls, 0);
+}
+
 TEST(Replay, IsDeterministicWithAnExpansionBudget) {
   const Recording& rec = shipped("maze_train");
   ReplayConfig config;
