@@ -5,21 +5,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace foresight {
 namespace {
 
-/// Distance from the placed frame's core segment to a box's ground rectangle (sampled along the
-/// core: a message, not a hot path).
+/// Distance from the placed frame's core segment to a box's ground rectangle: 0 when an end lies
+/// in it, else the nearest of its four edges (segment_distance_sq).
 float core_to_rect_m(const BodyVolume& v, const SceneBox& b) {
-  float best = std::numeric_limits<float>::max();
-  for (int i = 0; i <= 32; ++i) {
-    const vec2 p = v.center_m + (-1.0f + static_cast<float>(i) / 16.0f) * v.half_axis_m;
-    const float dx = std::max({b.min_m.x - p.x, p.x - b.max_m.x, 0.0f});
-    const float dz = std::max({b.min_m.z - p.y, p.y - b.max_m.z, 0.0f});
-    best = std::min(best, std::sqrt(dx * dx + dz * dz));
-  }
-  return best;
+  const vec2 p0 = v.center_m - v.half_axis_m, p1 = v.center_m + v.half_axis_m;
+  const GroundRect r = b.ground_rect();
+  if (r.contains(p0) || r.contains(p1)) return 0.0f;
+  const vec2 c[4] = {r.min_m, {r.max_m.x, r.min_m.y}, r.max_m, {r.min_m.x, r.max_m.y}};
+  float d2 = std::numeric_limits<float>::max();
+  for (int i = 0; i < 4; ++i) d2 = std::min(d2, segment_distance_sq(p0, p1, c[i], c[(i + 1) % 4]));
+  return std::sqrt(d2);
 }
 
 std::string metres(float v) {

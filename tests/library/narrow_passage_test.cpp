@@ -2,10 +2,16 @@
 // 0.8 m gap between pillars, a crouch walk the 1.0 m corridor under 1.2 m beams, where a walk
 // does not; every frame checked against the shipped scenes.
 #include "library/library_source.hpp"
+#include "anim/bvh.hpp"
+#include "support/bvh_variants.hpp"
+#include "support/test_paths.hpp"
 #include "world/collision_check.hpp"
 #include "world/data_paths.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
 
 namespace foresight {
 namespace {
@@ -42,6 +48,41 @@ TEST(NarrowPassages, AWalkPassesAGapOfEightyCentimetresAndACrouchWalkGoesUnderTh
   // Into the crouch before the corridor, out of it after.
   EXPECT_TRUE(feasible(lib, beams, "walk_to_crouch_walk_l", vec2(3.0f, 3.6f)));
   EXPECT_TRUE(feasible(lib, beams, "crouch_walk_to_walk_l", vec2(3.0f, 9.0f)));
+}
+
+// Not only our own clips: a captured take, rescaled to inches and under a dummy root (no unit
+// hint), still walks straight through the 0.8 m pillar gap, every frame checked.
+TEST(NarrowPassages, ACapturedWalkOfAnotherUnitAndRootPassesTheGap) {
+  FORESIGHT_REQUIRE_MOCAP();
+  BvhDocument take;
+  std::string error;
+  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", take, error)) << error;
+  test::scale_document(take, 1.0f / 2.54f);
+  test::insert_parent(take, 0, "Reference", 0.0f);
+  const auto dir = test::scratch_dir();
+  ASSERT_TRUE(bvh_save(dir / "walk_in_inches.bvh", take, error)) << error;
+  MotionSource source;
+  source.motions_dir = dir;
+  MotionLibrary lib;
+  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  Scene scene;
+  CollisionWorld pillars;
+  ASSERT_TRUE(scene_world_load("pillars", scene, pillars, error)) << error;
+  int straight = 0, through = 0;
+  for (int s = 0; s < lib.graph.num_segments(); ++s) {
+    const SegmentMotion& m = lib.segment_motion[static_cast<size_t>(s)];
+    if (!(lib.graph.segments[static_cast<size_t>(s)].tags & kTagLocomotion) || m.end.pos_m.y < 0.3f ||
+        std::abs(m.end.pos_m.x) > 0.1f || std::abs(m.end.heading_rad) > radians(8.0f))
+      continue;  // straight forward walking pieces only
+    ++straight;
+    bool all = true;
+    for (float z = 2.2f; z <= 6.6f && all; z += 0.1f)
+      all = segment_feasible(pillars, lib.segment_shapes[static_cast<size_t>(s)], Placement{vec2(5.0f, z), 0.0f});
+    through += all;
+  }
+  std::printf("[          ] %d of %d straight walking pieces of the capture pass the gap\n", through, straight);
+  ASSERT_GT(straight, 3);
+  EXPECT_GE(through * 2, straight) << through << " of " << straight << " straight walking pieces pass the gap";
 }
 
 }  // namespace
