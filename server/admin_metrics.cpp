@@ -79,6 +79,8 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_fallbacks_total", "counter", "Segment ends with nothing feasible ahead.", static_cast<double>(m.fallbacks));
   line(out, "foresight_steered_frames_total", "counter", "Frames steering mode turned an avatar's playing motion.",
        static_cast<double>(m.steered_frames));
+  line(out, "foresight_recoveries_total", "counter", "Times steering mode found an avatar wedged and backed it off.",
+       static_cast<double>(m.recoveries));
   line(out, "foresight_fighter_strikes_total", "counter", "Fighters' strikes judged.", static_cast<double>(m.fighter_strikes));
   line(out, "foresight_fighter_hits_total", "counter", "Fighters' strikes that hit.", static_cast<double>(m.fighter_hits));
   line(out, "foresight_uptime_seconds", "gauge", "Since the server started.", m.uptime_s);

@@ -33,7 +33,7 @@ struct AdminMetrics {
   uint64_t packets_in = 0, bytes_in = 0, packets_out = 0, bytes_out = 0, send_failures = 0;
   uint64_t sessions_opened = 0, sessions_timed_out = 0, sessions_closed = 0, refused = 0, spawn_refusals = 0;
   uint64_t challenges_sent = 0, challenges_capped = 0, joins_deferred = 0;
-  uint64_t avatar_contacts = 0, fallbacks = 0, steered_frames = 0;
+  uint64_t avatar_contacts = 0, fallbacks = 0, steered_frames = 0, recoveries = 0;
   uint64_t fighter_strikes = 0, fighter_hits = 0;
   uint64_t terrain_steps = 0, terrain_pivots = 0, terrain_refusals = 0;
   uint64_t avatars_sent = 0, avatars_referenced = 0;

@@ -264,6 +264,7 @@ void Server::publish_admin(Clock::time_point now) {
   m.sessions_closed = c.sessions_closed, m.refused = c.refused, m.spawn_refusals = c.spawn_refusals;
   m.challenges_sent = c.challenges_sent, m.challenges_capped = c.challenges_capped, m.joins_deferred = c.joins_deferred;
   m.avatar_contacts = c.avatar_contacts, m.fallbacks = c.fallbacks, m.steered_frames = c.steered_frames;
+  m.recoveries = c.recoveries;
   m.fighter_strikes = c.fighter_strikes, m.fighter_hits = c.fighter_hits;
   m.terrain_steps = c.terrain_steps, m.terrain_pivots = c.terrain_pivots, m.terrain_refusals = c.terrain_refusals;
   m.avatars_sent = c.avatars_sent, m.avatars_referenced = c.avatars_referenced;
@@ -909,6 +910,7 @@ void Server::advance(TickRecord& record) {
       const AvatarStepResult r = p->avatar->step(&veto);
       if (r.fallback) ++counters_.fallbacks;
       if (r.steered) ++counters_.steered_frames;
+      if (r.recovery) ++counters_.recoveries;
       if (r.segment_changed || r.steered) {  // committed: reserve it now for the players deciding after
         const PlaybackState& s = p->avatar->playback();
         reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, s.frame, s.segment_start);

@@ -69,6 +69,7 @@ struct ServerCounters {
   uint64_t avatar_contacts = 0;     ///< Ticks with two avatars' bodies overlapping (must stay 0).
   uint64_t fallbacks = 0;
   uint64_t steered_frames = 0;      ///< Frames steering mode turned an avatar's playing motion.
+  uint64_t recoveries = 0;          ///< Times steering mode found an avatar wedged and backed it off.
   uint64_t fighter_strikes = 0;     ///< Strikes judged.
   uint64_t fighter_hits = 0;
   uint64_t fighter_strike_failures = 0;  ///< Decided but not startable (logged).

@@ -222,6 +222,7 @@ struct NavigationRow {
   double seconds = 0.0;         ///< Simulated seconds replayed.
   int fallbacks = 0;
   int stalls = 0;
+  int recoveries = 0;
   int64_t colliding_frames = 0;
   double mean_command_angle_deg = 0.0;
   double avg_tree_size = 0.0;
@@ -237,7 +238,8 @@ struct ControllerSummary {
   int goals_reached = 0;
   int recordings = 0;
   int fallbacks = 0;
-  int stalls = 0;  ///< ReplayResult::stalls, summed over the runs.
+  int stalls = 0;      ///< ReplayResult::stalls, summed over the runs.
+  int recoveries = 0;  ///< ReplayResult::recoveries, summed over the runs.
   int64_t colliding_frames = 0;
   size_t responses = 0;
   double response_ms_p50 = 0.0;  ///< Over every run's responses pooled.

@@ -63,6 +63,7 @@ void add_run(NavigationResult& r, std::vector<double>& pooled, ControllerSummary
   row.seconds = res.seconds;
   row.fallbacks = res.fallbacks;
   row.stalls = res.stalls;
+  row.recoveries = res.recoveries;
   row.colliding_frames = res.colliding_frames;
   row.mean_command_angle_deg = res.mean_command_angle_deg;
   row.avg_tree_size = res.avg_tree_size;
@@ -78,6 +79,7 @@ void add_run(NavigationResult& r, std::vector<double>& pooled, ControllerSummary
   sum.goals_reached += res.reached_goal ? 1 : 0;
   sum.fallbacks += res.fallbacks;
   sum.stalls += res.stalls;
+  sum.recoveries += res.recoveries;
   sum.colliding_frames += res.colliding_frames;
   pooled.insert(pooled.end(), ms.begin(), ms.end());
   if (spec.checks_collisions) r.lookahead_collisions += res.colliding_frames;

@@ -294,7 +294,7 @@ std::string navigation_text(const NavigationResult& n) {
   for (const ControllerSummary& s : n.summary)
     out += "  " + pad(s.controller, 31, false) + "  goals " + pad(std::to_string(s.goals_reached) + "/" +
            std::to_string(s.recordings), 5) + "  fallbacks " + pad(std::to_string(s.fallbacks), 5) +
-           "  stalls " + pad(std::to_string(s.stalls), 4) +
+           "  stalls " + pad(std::to_string(s.stalls), 4) + "  recoveries " + pad(std::to_string(s.recoveries), 4) +
            "  responses " + pad(std::to_string(s.responses), 4) + "  p50 " + pad(fmt("%.0f", s.response_ms_p50), 5) +
            " ms  p95 " + pad(fmt("%.0f", s.response_ms_p95), 5) + " ms  " +
            (s.response_ms_p95 < n.response_target_ms ? "meets" : "MISSES") + " target\n";
@@ -318,13 +318,14 @@ std::string navigation_text(const NavigationResult& n) {
 CsvTable navigation_csv(const std::vector<const NavigationResult*>& results) {
   CsvTable csv;
   csv.header = {"mode", "recording", "controller", "lookahead", "reached_goal", "time_to_goal_s",
-                "seconds", "fallbacks", "colliding_frames", "mean_command_angle_deg",
+                "seconds", "fallbacks", "stalls", "recoveries", "colliding_frames", "mean_command_angle_deg",
                 "avg_tree_size", "responses", "response_ms_p50", "response_ms_p95"};
   for (const NavigationResult* n : results)
     for (const NavigationRow& r : n->rows)
       csv.rows.push_back({n->mode, r.recording, r.controller, r.lookahead ? "1" : "0", r.reached_goal ? "1" : "0",
                         r.reached_goal ? format_number(r.time_to_goal_s, 3) : "",
-                        format_number(r.seconds, 3), std::to_string(r.fallbacks),
+                        format_number(r.seconds, 3), std::to_string(r.fallbacks), std::to_string(r.stalls),
+                        std::to_string(r.recoveries),
                         std::to_string(r.colliding_frames),
                         format_number(r.mean_command_angle_deg, 2), format_number(r.avg_tree_size, 2),
                         std::to_string(r.responses.size()), format_number(r.response_ms_p50, 1),
@@ -396,6 +397,7 @@ std::string lab_json(const LabResult& r) {
       return "{\"name\":" + json_string(s.controller) + ",\"goals_reached\":" +
              std::to_string(s.goals_reached) + ",\"recordings\":" + std::to_string(s.recordings) +
              ",\"fallbacks\":" + std::to_string(s.fallbacks) + ",\"stalls\":" + std::to_string(s.stalls) +
+             ",\"recoveries\":" + std::to_string(s.recoveries) +
              ",\"colliding_frames\":" +
              std::to_string(s.colliding_frames) + ",\"response_ms_p50\":" +
              json_number(s.response_ms_p50, 1) + ",\"response_ms_p95\":" +

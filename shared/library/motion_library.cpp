@@ -6,6 +6,7 @@
 
 #include <xxhash.h>
 
+#include <algorithm>
 #include <cassert>
 #include <type_traits>
 
@@ -214,6 +215,27 @@ SegmentBody segment_body(const MotionLibrary& lib, int segment) {
     b.height_m = std::max(b.height_m, v.y_max_m - v.y_min_m);
   }
   return b;
+}
+
+float lowest_moving_body_m(const MotionLibrary& library) {
+  float lowest = kStandingHeight_m;
+  bool any = false;
+  for (int s = 0; s < library.graph.num_segments(); ++s) {
+    if (!(library.graph.segments[s].tags & kTagLocomotion)) continue;
+    const float top = library.segment_shapes[static_cast<size_t>(s)].y_max_m;
+    lowest = any ? std::min(lowest, top) : top;
+    any = true;
+  }
+  return lowest;
+}
+
+float moving_body_clearance_m(const MotionLibrary& library) {
+  std::vector<float> widths;
+  for (int s = 0; s < library.graph.num_segments(); ++s)
+    if (library.graph.segments[s].tags & kTagLocomotion) widths.push_back(segment_body(library, s).width_m);
+  if (widths.empty()) return 0.35f;
+  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
+  return 0.5f * widths[widths.size() / 2] + kMovingBodySteerRoom_m;
 }
 
 Placement motion_library_root_at(const MotionLibrary& lib, int segment, int frame,

@@ -80,6 +80,21 @@ struct SegmentBody {
 };
 SegmentBody segment_body(const MotionLibrary& library, int segment);
 
+inline constexpr float kStandingHeight_m = 1.85f;  ///< Walking body height (docs/SCENES.md).
+/// Room a route leaves beside the library's walker to steer in (moving_body_clearance_m).
+inline constexpr float kMovingBodySteerRoom_m = 0.03f;
+
+/// The lowest body the library moves in: the minimum over locomotion segments of the highest
+/// point of their collision volumes (crouch-walking for the default library). 1.85 m when the
+/// library has no locomotion.
+float lowest_moving_body_m(const MotionLibrary& library);
+
+/// The clearance a route needs for the library's walkers: half the median width of its
+/// locomotion segments' bodies (segment_body) plus 3 cm of room to steer (the look-ahead checks
+/// every motion exactly: only those that fit are taken); 0.35 m for a library with no locomotion.
+float moving_body_clearance_m(const MotionLibrary& library);
+
+
 /// World placement of the root at `frame` of a segment placed at `segment_start`.
 Placement motion_library_root_at(const MotionLibrary& library, int segment, int frame,
                                  const Placement& segment_start);

@@ -1,5 +1,7 @@
 #include "lookahead/lookahead_avatar.hpp"
 
+#include "lookahead/scene_path.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,12 +30,12 @@ class SteeredChoice final : public ChildVeto {
 
 }  // namespace
 
-int find_fallback_segment(const MotionLibrary& library) {
+int find_fallback_segment(const MotionLibrary& library, bool crouching) {
   int best = -1;
   float best_move = 0.0f;
   for (int s = 0; s < library.graph.num_segments(); ++s) {
     const uint32_t tags = library.graph.segments[s].tags;
-    if (!(tags & kTagIdle) || (tags & (kTagCrouch | kTagFight))) continue;
+    if (!(tags & kTagIdle) || (tags & kTagFight) || ((tags & kTagCrouch) != 0) != crouching) continue;
     const float move = glm::length(library.segment_motion[s].end.pos_m);
     if (best < 0 || move < best_move) best = s, best_move = move;
   }
@@ -60,7 +62,10 @@ LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWo
       world_(world),
       tree_(library, world, std::move(config)),
       playback_{start_segment, 0, start, -1},
-      fallback_segment_(find_fallback_segment(library)) {
+      fallback_segment_(find_fallback_segment(library)),
+      crouch_fallback_segment_(find_fallback_segment(library, true)),
+      body_clearance_m_(moving_body_clearance_m(library) - kMovingBodySteerRoom_m),
+      body_height_m_(lowest_moving_body_m(library)) {
   tree_.reset(start_segment, start);
   // Per segment, once: is it a standing loop (a held pose that goes nowhere, every frame the
   // same: idle loops), and does it end standing (a standing loop may follow it: stops, side
@@ -88,36 +93,158 @@ void LookaheadAvatar::set_input(const ControlInput& input) {
     input_ = ControlInput{};  // a broken command stops the avatar rather than steering it anywhere
     ++rejected_inputs_;
   }
-  tree_.set_command(control_world_direction(input_), root(), input_.crouch);
+  // A key released or turned away from the one the escape began under: the player steers again.
+  const vec2 command = control_world_direction(input_);
+  if (recovering() && !(glm::dot(command, command) > 1e-8f &&
+                        glm::dot(glm::normalize(command), escape_command_) > kSameCommandCos)) {
+    recover_s_ = -1.0f;
+    watch_s_ = -1.0f;
+  }
+  tree_.set_command(steering_command(), root(), input_.crouch);
+}
+
+vec2 LookaheadAvatar::steering_command() const {
+  return recovering() ? escape_ : control_world_direction(input_);
+}
+
+// Wedged: a direction held for kWedgedAfter_s and the root no kProgress_m from where it was
+// (standing where nothing forward fits, or stepping left and right in place). If the scene has
+// room ahead for the body, the avatar's placement is what blocks it (say, 15 cm off a narrow
+// corridor's centre line, too close to a beam to crouch), so it backs off, the tree following an
+// escape direction (back, then back-left, then back-right on later recoveries, so that each try
+// comes in differently) until kBackOff_m or kEscapeMax_s, and tries again. A dead end in front
+// of the held key is the player's choice: the avatar stands.
+bool LookaheadAvatar::watch_progress() {
+  const vec2 command = control_world_direction(input_);
+  if (tree_.config().steer_rad_per_s <= 0.0f || glm::dot(command, command) < 1e-8f) {
+    watch_s_ = -1.0f;
+    return false;
+  }
+  const float fps = library_.clips[library_.graph.segments[playback_.segment].clip].fps;
+  const float dt = 1.0f / (fps > 0.0f ? fps : 30.0f);
+  const vec2 pos = root().pos_m;
+  if (recovering()) {
+    recover_s_ += dt;
+    if (glm::length(pos - escape_from_) >= kBackOff_m || recover_s_ >= kEscapeMax_s) {
+      recover_s_ = -1.0f;
+      watch_s_ = -1.0f;
+      tree_.set_command(command, root(), input_.crouch);
+    }
+    return false;
+  }
+  if (watch_s_ < 0.0f || glm::length(pos - watch_from_) > kProgress_m) {
+    watch_from_ = pos;
+    watch_s_ = 0.0f;
+    return false;
+  }
+  watch_s_ += dt;
+  if (watch_s_ < kWedgedAfter_s) return false;
+  watch_s_ = 0.0f;  // a dead end is looked at again later: another avatar may have moved away
+  if (!way_ahead_open(command)) return false;
+  static constexpr float kEscapeTurns_rad[] = {0.0f, 0.785f, -0.785f};  // back, back-left, back-right
+  escape_command_ = glm::normalize(command);
+  escape_ = rotate_ground(-escape_command_, kEscapeTurns_rad[recoveries_ % 3]);
+  escape_from_ = pos;
+  recover_s_ = 0.0f;
+  ++recoveries_;
+  tree_.set_command(escape_, root(), input_.crouch);
+  return true;
+}
+
+bool LookaheadAvatar::way_ahead_open(vec2 command) const {
+  const vec2 pos = root().pos_m;
+  const vec2 dir = glm::normalize(command);
+  for (const float turn : {0.0f, 0.5f * kProbeSpread_rad, -0.5f * kProbeSpread_rad, kProbeSpread_rad, -kProbeSpread_rad})
+    if (scene_segment_clear(world_, pos, pos + rotate_ground(dir, turn) * kProbe_m, body_clearance_m_, body_height_m_))
+      return true;
+  return false;
 }
 
 GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(budget); }
 
 bool LookaheadAvatar::steer(const ChildVeto* veto) {
-  const vec2 command = control_world_direction(input_);
+  const vec2 command = steering_command();
   if (glm::dot(command, command) < 1e-8f) return false;
   const Segment& seg = library_.graph.segments[playback_.segment];
   if (!(seg.tags & kTagLocomotion)) return false;
   const Placement now = root();
   const float want = std::atan2(command.x, command.y);  // heading convention: forward = (sin h, cos h)
+  // Within 15 deg the clips' own turns do: steering there would regrow the tree every frame. The
+  // root's heading sways a few degrees with each stride: measured from it, a key held 11 deg off
+  // a corridor's axis was steered to at every sway and walked the avatar into the wall, where the
+  // clips alone walk straight down the middle. So whether to steer is decided on the heading the
+  // segment means to have (intended_heading); how far, on the root's.
+  if (std::abs(wrap_angle(want - intended_heading())) < kWalkingDeadZone_rad) return false;
   const float error = wrap_angle(want - now.heading_rad);
-  const float fps = library_.clips[seg.clip].fps;
-  const float step = tree_.config().steer_rad_per_s / (fps > 0.0f ? fps : 30.0f);
-  // Within 15 deg the clips' own turns do: steering there would regrow the tree every frame.
-  if (std::abs(error) < radians(15.0f)) return false;
-  const float turn = std::clamp(error, -step, step);
+  return rotate_playing(std::clamp(error, -frame_turn(tree_.config().steer_rad_per_s), frame_turn(tree_.config().steer_rad_per_s)),
+                        veto, true);
+}
+
+// The playing segment's heading with its gait sway taken out: from its start's to its end's,
+// in proportion to the frames played.
+float LookaheadAvatar::intended_heading() const {
+  const Placement& start = playback_.segment_start;
+  const float turn = wrap_angle(start.compose(library_.segment_motion[playback_.segment].end).heading_rad - start.heading_rad);
+  const int frames = library_.graph.segments[playback_.segment].num_frames();
+  return start.heading_rad + turn * static_cast<float>(playback_.frame) / static_cast<float>(std::max(1, frames));
+}
+
+float LookaheadAvatar::frame_turn(float rad_per_s) const {
+  const float fps = library_.clips[library_.graph.segments[playback_.segment].clip].fps;
+  return rad_per_s / (fps > 0.0f ? fps : 30.0f);
+}
+
+bool LookaheadAvatar::rotate_playing(float turn, const ChildVeto* veto, bool keep_way_on) {
   // Rotate the segment's placement about where the root stands now.
+  const Placement now = root();
   const Placement rotated{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
                           playback_.segment_start.heading_rad + turn};
   // The veto sees the whole rotated segment (conservative: its played frames too).
   if (!segment_feasible(world_, library_.segment_shapes[playback_.segment], rotated) ||
       (veto != nullptr && veto->blocks(playback_.segment, rotated)) ||
-      !has_way_on(playback_.segment, rotated, kWayOnDepth))
+      (keep_way_on && !has_way_on(playback_.segment, rotated, kWayOnDepth)))
     return false;
   playback_.segment_start = rotated;
   tree_.reset(playback_.segment, rotated, playback_.incoming_transition);
-  tree_.set_command(command, root(), input_.crouch);
+  tree_.set_command(steering_command(), root(), input_.crouch);
   return true;
+}
+
+// A standing avatar whose tree finds nothing better than standing turns on the spot, as a person
+// shuffles round to face a doorway: the library's turns on the spot are coarse (90 deg) and may
+// not fit where it stands. It turns towards the heading nearest the command (within
+// kFacingCone_rad of it) from which it can move on (has_way_on), e.g. square to a corridor when
+// the key held points 11 deg into its wall. The target is searched once per stand and command.
+bool LookaheadAvatar::turn_on_spot(const ChildVeto* veto) {
+  const vec2 command = steering_command();
+  if (glm::dot(command, command) < 1e-8f || !is_standing_loop(playback_.segment)) return false;
+  const vec2 dir = glm::normalize(command);
+  if (!facing_searched_ || glm::dot(dir, facing_for_) < kSameFacingCos) {
+    facing_searched_ = true;
+    facing_for_ = dir;
+    has_facing_ = false;
+    const Placement now = root();
+    const float want = std::atan2(dir.x, dir.y);  // heading convention: forward = (sin h, cos h)
+    for (float off = 0.0f; off <= kFacingCone_rad && !has_facing_; off += kFacingStep_rad)
+      for (const float h : {want + off, want - off}) {
+        const float turn = wrap_angle(h - now.heading_rad);
+        const Placement at{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
+                           playback_.segment_start.heading_rad + turn};
+        if (segment_feasible(world_, library_.segment_shapes[playback_.segment], at) &&
+            has_way_on(playback_.segment, at, kWayOnDepth)) {
+          facing_ = h;
+          has_facing_ = true;
+          break;
+        }
+      }
+  }
+  if (!has_facing_) return false;
+  const float error = wrap_angle(facing_ - root().heading_rad);
+  if (std::abs(error) < kFacedWithin_rad) return false;
+  const float step = frame_turn(std::min(tree_.config().steer_rad_per_s, kStandingTurn_rad_per_s));
+  if (rotate_playing(std::clamp(error, -step, step), veto, false)) return true;
+  has_facing_ = false;  // something stands in the way of the turn: stand
+  return false;
 }
 
 // The tree only looks ahead of the placement it was grown for, so it cannot see what a rotation
@@ -142,7 +269,7 @@ bool LookaheadAvatar::has_way_on(int segment, const Placement& start, int depth)
 // its last foot is down and only the weight settles. Ending it here for a moving child shows a
 // jump of at most this much, and a start no longer waits for the settling.
 bool LookaheadAvatar::may_end_early() const {
-  const vec2 command = control_world_direction(input_);
+  const vec2 command = steering_command();
   if (playback_.frame <= 0 || glm::dot(command, command) < 1e-8f) return false;
   const Placement now = root();
   const Placement end = playback_next_start(library_, playback_);
@@ -179,7 +306,7 @@ void LookaheadAvatar::find_traps() {
 // is feasible; and no avatar walks into a trap (find_traps) while anything else is feasible.
 int LookaheadAvatar::select_child(const ChildVeto* veto) {
   const int best = tree_.select_child(veto);
-  const vec2 command = control_world_direction(input_);
+  const vec2 command = steering_command();
   if (best < 0 || tree_.config().steer_rad_per_s <= 0.0f || glm::dot(command, command) < 1e-8f) return best;
   find_traps();
   if (!ends_standing_[static_cast<size_t>(playback_.segment)]) {
@@ -195,6 +322,7 @@ int LookaheadAvatar::select_child(const ChildVeto* veto) {
 
 AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   AvatarStepResult result;
+  result.recovery = watch_progress();
   ++playback_.frame;
   int child = -1;
   if (!playback_at_end(library_, playback_)) {
@@ -204,7 +332,10 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
       return result;
     }
     child = select_child(veto);
-    if (child < 0 || (library_.graph.segments[tree_.node(child).segment].tags & kTagIdle)) return result;
+    if (child < 0 || (library_.graph.segments[tree_.node(child).segment].tags & kTagIdle)) {
+      result.steered = turn_on_spot(veto);  // nothing better than standing
+      return result;
+    }
     playback_.frame = library_.graph.segments[playback_.segment].num_frames();  // its end, now
   } else {
     child = select_child(veto);
@@ -216,21 +347,27 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
       child >= 0 && (tree_.config().check_collisions ||
                      segment_feasible(world_, library_.segment_shapes[tree_.node(child).segment],
                                       tree_.node(child).start));
+  facing_searched_ = false;
   if (child_free) {
     result.transition = tree_.advance_root(child);
     playback_take(library_, playback_, result.transition);
     return result;
   }
-  // Nothing feasible ahead: idle where the segment ends, if that is free; else hold the last
-  // frame and look again from the same root next frame.
+  // Nothing feasible ahead: idle where the segment ends, crouching if it was crouching (standing
+  // up under a beam would pop the pose and leave it where it cannot crouch again), if that is
+  // free; else hold the last frame and look again from the same root next frame.
   result.fallback = true;
   ++fallbacks_;
   const Placement here = playback_next_start(library_, playback_);
-  if (fallback_segment_ >= 0 &&
-      segment_feasible(world_, library_.segment_shapes[fallback_segment_], here) &&
-      (veto == nullptr || !veto->blocks(fallback_segment_, here))) {
-    playback_ = {fallback_segment_, 0, here, -1};
-    tree_.reset(fallback_segment_, here);
+  const bool crouching = (library_.graph.segments[playback_.segment].tags & kTagCrouch) != 0;
+  const auto idle_fits = [&](int idle) {
+    return idle >= 0 && segment_feasible(world_, library_.segment_shapes[idle], here) &&
+           (veto == nullptr || !veto->blocks(idle, here));
+  };
+  const int idle = crouching && idle_fits(crouch_fallback_segment_) ? crouch_fallback_segment_ : fallback_segment_;
+  if (idle_fits(idle)) {
+    playback_ = {idle, 0, here, -1};
+    tree_.reset(idle, here);
   } else {
     playback_.frame = library_.graph.segments[playback_.segment].num_frames() - 1;
     tree_.reset(playback_.segment, playback_.segment_start, playback_.incoming_transition);

@@ -7,8 +7,11 @@
 // When the tree has no feasible child at a segment end, the avatar falls back to the library's
 // idle segment placed where it stands (if that is collision-free), else holds its last pose: it
 // never moves into an obstacle. With MotionTreeConfig::steer_rad_per_s > 0 (steering mode) it
-// also steers the playing segment, ends settling segments early and filters the tree's choice
-// while a direction is held (lookahead_avatar.cpp, docs/LOOKAHEAD.md).
+// also steers the playing segment (and, standing, turns on the spot), ends settling segments
+// early, filters the tree's choice while a direction is held, and recovers when wedged: a
+// direction held for kWedgedAfter_s without kProgress_m of progress, while the scene has room
+// ahead for its body, makes it back off (the tree follows an escape direction) and try again
+// (lookahead_avatar.cpp, docs/LOOKAHEAD.md "Recovering").
 #include "library/playback.hpp"
 #include "lookahead/control_input.hpp"
 #include "lookahead/motion_tree.hpp"
@@ -23,10 +26,24 @@ struct AvatarStepResult {
   bool fallback = false;         ///< ... because nothing feasible was found (idle or hold).
   int transition = -1;           ///< Graph transition taken, -1 for a fallback.
   bool steered = false;          ///< Steering mode rotated the playing segment (a new start).
+  bool recovery = false;         ///< Steering mode found the avatar wedged and began backing it off.
 };
 
 class LookaheadAvatar {
  public:
+  // Recovery (steering mode): no kProgress_m in kWedgedAfter_s while a direction is held is
+  // wedged (a side step is 0.26 m: stepping left and right is no progress); the escape lasts
+  // until kBackOff_m from where it began or kEscapeMax_s. The way ahead is open when a
+  // straight kProbe_m leg within kProbeSpread_rad of the command is free for the body.
+  static constexpr float kProgress_m = 0.3f;
+  static constexpr float kWedgedAfter_s = 1.5f;
+  static constexpr float kBackOff_m = 0.6f;
+  static constexpr float kEscapeMax_s = 2.5f;
+  static constexpr float kProbe_m = 1.0f;
+  static constexpr float kProbeSpread_rad = 0.7f;  // 40 deg
+  static constexpr float kSameCommandCos = 0.7f;   // within 45 deg: the same key
+  static constexpr float kStandingTurn_rad_per_s = 3.14f;  // 180 deg/s, a brisk turn on the spot
+
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,
                   int start_segment, const Placement& start);
@@ -47,11 +64,24 @@ class LookaheadAvatar {
   /// frame of a hold counts once.
   int fallbacks() const { return fallbacks_; }
   int rejected_inputs() const { return rejected_inputs_; }
+  /// Times steering mode found the avatar wedged or dithering and backed it off.
+  int recoveries() const { return recoveries_; }
+  bool recovering() const { return recover_s_ >= 0.0f; }
   /// The segment used when nothing feasible is found (-1 if the library has no idle segment).
   int fallback_segment() const { return fallback_segment_; }
 
  private:
+  /// The direction the tree and the steering follow: the player's, or the escape direction
+  /// while recovering.
+  vec2 steering_command() const;
+  /// True when a recovery began.
+  bool watch_progress();
+  bool way_ahead_open(vec2 command) const;
   bool steer(const ChildVeto* veto);
+  float intended_heading() const;
+  bool turn_on_spot(const ChildVeto* veto);
+  bool rotate_playing(float turn, const ChildVeto* veto, bool keep_way_on);
+  float frame_turn(float rad_per_s) const;
   bool is_standing_loop(int segment) const { return standing_loop_[static_cast<size_t>(segment)] != 0; }
   bool has_way_on(int segment, const Placement& start, int depth) const;
   bool may_end_early() const;
@@ -61,6 +91,11 @@ class LookaheadAvatar {
   static constexpr int kWayOnDepth = 2;  // segments a rotation must leave open ahead
   static constexpr float kEarlyEndMove_m = 0.02f;
   static constexpr float kEarlyEndTurn_rad = 0.035f;  // 2 deg
+  static constexpr float kWalkingDeadZone_rad = 0.26f;     // 15 deg
+  static constexpr float kFacingCone_rad = 0.79f;          // 45 deg either side of the command
+  static constexpr float kFacingStep_rad = 0.087f;         // 5 deg
+  static constexpr float kFacedWithin_rad = 0.017f;        // 1 deg
+  static constexpr float kSameFacingCos = 0.985f;          // a command within 10 deg: same search
 
   const MotionLibrary& library_;
   const CollisionWorld& world_;
@@ -68,16 +103,33 @@ class LookaheadAvatar {
   PlaybackState playback_;
   ControlInput input_;
   int fallback_segment_ = -1;
+  int crouch_fallback_segment_ = -1;  ///< Where a crouching avatar falls back to (-1: none).
   int fallbacks_ = 0;
   int rejected_inputs_ = 0;
+  float body_clearance_m_ = 0;  ///< The library's walker (moving_body_clearance_m, less steering room).
+  float body_height_m_ = 0;     ///< Its lowest moving body (lowest_moving_body_m).
+  // Progress watch and recovery (steering mode, while a direction is held).
+  vec2 watch_from_{0.0f};
+  float watch_s_ = -1;  ///< < 0: not watching.
+  vec2 escape_{0.0f};
+  vec2 escape_from_{0.0f};
+  vec2 escape_command_{0.0f};  ///< The player's direction when the escape began.
+  float recover_s_ = -1;       ///< < 0: not recovering.
+  int recoveries_ = 0;
+  // turn_on_spot(): the heading searched for this stand and command.
+  bool facing_searched_ = false;
+  bool has_facing_ = false;
+  vec2 facing_for_{0.0f};
+  float facing_ = 0;
   std::vector<uint8_t> standing_loop_;  ///< Per graph segment: a held pose that goes nowhere.
   std::vector<uint8_t> ends_standing_;  ///< Per graph segment: a standing loop may follow it.
   std::vector<int> traps_;              ///< find_traps(): segments of the root's trap children.
   std::vector<int> visit_;              ///< Scratch stack (reserved once).
 };
 
-/// The idle segment a library falls back to: tagged idle (not crouch, not fight), moving least.
-int find_fallback_segment(const MotionLibrary& library);
+/// The idle segment a library falls back to: tagged idle (not fight), crouching or not as asked,
+/// moving least. -1 if it has none.
+int find_fallback_segment(const MotionLibrary& library, bool crouching = false);
 
 /// Where a new avatar starts: the fallback idle, or in a library without one (a folder of
 /// locomotion captures) the non-fight segment with the slowest root. -1 for an empty library.

@@ -55,6 +55,7 @@ ReplayRun::ReplayRun(const MotionLibrary& library, const CollisionWorld& world, 
   velocity_window_ = std::max(1, static_cast<int>(std::lround(kVelocityWindow_s / config_.frame_interval_s)));
   const double frames = std::max(1.0, std::ceil(config_.max_seconds / config_.frame_interval_s) + 1.0);
   result_.path.reserve(static_cast<size_t>(std::min(frames, 1.0e6)));
+  result_.segments.reserve(result_.path.capacity());
   done_ = false;
 }
 
@@ -83,6 +84,7 @@ void ReplayRun::frame(const ControlInput& input) {
 
   const vec2 pos = avatar_->root().pos_m;
   result_.path.push_back(pos);
+  result_.segments.push_back(avatar_->playback().segment);
   measure(t);
   count_stalls(t, pos, glm::length(control_world_direction(input)) > 0.0f);
   ++frame_;
@@ -158,6 +160,7 @@ void ReplayRun::measure(double t_s) {
 ReplayResult ReplayRun::finish() {
   if (avatar_) {
     result_.fallbacks = avatar_->fallbacks();
+    result_.recoveries = avatar_->recoveries();
     if (!result_.path.empty()) result_.avg_tree_size = tree_size_sum_ / static_cast<double>(result_.path.size());
     if (angle_frames_ > 0) result_.mean_command_angle_deg = angle_sum_deg_ / static_cast<double>(angle_frames_);
   }

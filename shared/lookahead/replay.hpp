@@ -62,6 +62,7 @@ struct ReplayResult {
   /// Stalls: a key held for kStallSeconds while the root got no kStallProgress_m from where it
   /// was (wedged, or dithering in place); each such stretch counts once.
   int stalls = 0;
+  int recoveries = 0;  ///< LookaheadAvatar::recoveries(): backed off when wedged (steering mode).
   int64_t colliding_frames = 0;  ///< Shown poses re-checked from FK (must be 0).
   double avg_tree_size = 0;      ///< Mean over display frames of tree.num_nodes() after growing.
   /// Mean angle between the commanded world direction and the avatar's velocity (root
@@ -73,6 +74,7 @@ struct ReplayResult {
   std::vector<Response> responses;
   std::vector<int> transitions_taken;  ///< Graph transitions entered, in order (strategy 3).
   std::vector<vec2> path;              ///< Root position per display frame.
+  std::vector<int> segments;           ///< Segment playing per display frame (traces, diagnosis).
   std::string error;                   ///< Non-empty when the replay could not start.
 };
 

@@ -8,6 +8,7 @@
 // ground under the point as reference (the world's terrain rule). Neighbouring points are
 // connected when both are free, their midpoint is free and their ground heights differ by at most
 // the world's ground tolerance.
+#include "library/motion_library.hpp"
 #include "math/types.hpp"
 #include "world/collision_world.hpp"
 
@@ -16,7 +17,6 @@
 namespace foresight {
 
 inline constexpr float kRouteGridSpacing_m = 0.25f;
-inline constexpr float kStandingHeight_m = 1.85f;  ///< Walking body height (docs/SCENES.md).
 
 /// True when every point of the straight segment a-b (sampled every <= 0.1 m) is free as above
 /// and the ground along it has no step larger than the tolerance.

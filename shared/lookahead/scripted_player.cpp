@@ -23,8 +23,6 @@ constexpr double kMaxStuckAfter_s = 600.0;
 // The radius of the thin body scene_route joins the exact start / goal to its grid with: a point
 // not free for it cannot be routed from or to, whatever the clearance.
 constexpr float kThinRadius_m = 0.05f;
-// Room a route leaves beside the library's walker to steer in (moving_body_clearance_m).
-constexpr float kSteerRoom_m = 0.03f;
 
 int key_of(vec2 camera_dir) {
   const float a = std::atan2(camera_dir.x, camera_dir.y);  // 0 = up, +pi/2 = right
@@ -81,27 +79,6 @@ std::string human_model_problem(const HumanModel& h) {
 
 }  // namespace
 
-float lowest_moving_body_m(const MotionLibrary& library) {
-  float lowest = kStandingHeight_m;
-  bool any = false;
-  for (int s = 0; s < library.graph.num_segments(); ++s) {
-    if (!(library.graph.segments[s].tags & kTagLocomotion)) continue;
-    const float top = library.segment_shapes[static_cast<size_t>(s)].y_max_m;
-    lowest = any ? std::min(lowest, top) : top;
-    any = true;
-  }
-  return lowest;
-}
-
-float moving_body_clearance_m(const MotionLibrary& library) {
-  std::vector<float> widths;
-  for (int s = 0; s < library.graph.num_segments(); ++s)
-    if (library.graph.segments[s].tags & kTagLocomotion) widths.push_back(segment_body(library, s).width_m);
-  if (widths.empty()) return 0.35f;
-  std::nth_element(widths.begin(), widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
-  return 0.5f * widths[widths.size() / 2] + kSteerRoom_m;
-}
-
 bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, const CollisionWorld& world,
                           const Placement& start, vec2 goal, const ScriptedPlayerConfig& config,
                           std::string& error) {
@@ -148,7 +125,7 @@ bool ScriptedPlayer::plan(const MotionLibrary& library, const Scene& scene, cons
     else
       error = "no route from " + point_text(start.pos_m) + " to " + point_text(goal) +
               " for a body of radius " + metres(clearance) + " and height " + metres(height) +
-              " (the library's walkers are " + metres(2.0f * (body_clearance - kSteerRoom_m)) +
+              " (the library's walkers are " + metres(2.0f * (body_clearance - kMovingBodySteerRoom_m)) +
               " across): every way is narrower or lower, or walled off";
     return false;
   }
@@ -184,7 +161,9 @@ ControlInput ScriptedPlayer::frame(double t, vec2 pos) {
 
   // Where the player looks: the furthest point of the route ahead that it can see.
   const size_t before = leg_;
-  const vec2 target = look_ahead(pos);
+  bool in_sight = false;
+  const vec2 target = look_ahead(pos, in_sight);
+  replan_if_lost(in_sight, pos);
   const bool turned = leg_ != before;
   const vec2 to_target = target - pos;
   const float distance = glm::length(to_target);
@@ -213,7 +192,7 @@ ControlInput ScriptedPlayer::frame(double t, vec2 pos) {
 // look_ahead_m further along that a straight clear line from the avatar reaches
 // (sight_clearance_m wide). When even the closest point is hidden (the avatar brushes a wall), a
 // point 0.5 m ahead of it.
-vec2 ScriptedPlayer::look_ahead(vec2 pos) {
+vec2 ScriptedPlayer::look_ahead(vec2 pos, bool& in_sight) {
   const ScriptedPlayerConfig& c = config_;
   const std::vector<vec2>& route = route_;
   const CollisionWorld& world = *world_;
@@ -261,10 +240,24 @@ vec2 ScriptedPlayer::look_ahead(vec2 pos) {
     seen = p;
     any = true;
   }
+  in_sight = any;
   if (any) return seen;
   const vec2 along = route[leg + 1] - route[leg];
   const float len = glm::length(along);
   return len > 0.0f ? route[leg] + u * along + along * (std::min(0.5f, len) / len) : route[leg + 1];
+}
+
+// A person who finds the way they meant to take behind a wall (the avatar went round by another
+// way, or was pushed aside) looks for the way again from where they are.
+void ScriptedPlayer::replan_if_lost(bool route_in_sight, vec2 pos) {
+  lost_frames_ = route_in_sight ? 0 : lost_frames_ + 1;
+  if (static_cast<double>(lost_frames_) * config_.frame_interval_s < kReplanAfter_s) return;
+  lost_frames_ = 0;
+  std::vector<vec2> route;
+  if (!scene_route(*world_, pos, route_.back(), route_clearance_used_m_, route_body_height_m_, route)) return;
+  route_ = std::move(route);
+  leg_ = 0;
+  ++replans_;
 }
 
 // The key held at time t (-1: none). `wanted_camera_dir` is the direction to the target in

@@ -75,6 +75,8 @@ struct ScriptedPlayerConfig {
 
 class ScriptedPlayer {
  public:
+  static constexpr double kReplanAfter_s = 2.0;
+
   /// Plans the route from `start` to `goal` for the lowest body the library moves in and starts a
   /// fresh player (keys up, human behaviour from config.seed, no positions seen). False with a
   /// reason (the player is then unplanned) when an argument or config value is not finite or out
@@ -89,8 +91,11 @@ class ScriptedPlayer {
   /// The input the player holds at time t_s, seeing the avatar's root at `avatar_pos_m`. Call
   /// once per frame, t increasing by frame_interval_s (the player counts frames for its "stuck"
   /// measure). Stop (keys up) when unplanned or when t or the position is not finite (that frame
-  /// is then not seen at all). No allocation.
+  /// is then not seen at all). When no point of the route has been in sight for kReplanAfter_s
+  /// (the avatar went round another way and the route is behind a wall), it plans the route
+  /// again from where the avatar is (the only allocation, counted in replans()).
   ControlInput frame(double t_s, vec2 avatar_pos_m);
+  int replans() const { return replans_; }
 
   /// Position of the camera the last frame() used (for drawing); zero when no scene camera.
   vec3 camera_pos_m() const { return camera_pos_m_; }
@@ -106,7 +111,8 @@ class ScriptedPlayer {
  private:
   enum class Mode { kFollow, kHesitate, kWrongTap, kWiggle };
 
-  vec2 look_ahead(vec2 pos);
+  vec2 look_ahead(vec2 pos, bool& in_sight);
+  void replan_if_lost(bool route_in_sight, vec2 pos);
   int keys(double t, vec2 wanted_camera_dir, bool turned, double progress_m);
   int want(vec2 camera_dir) const;
   int neighbour(int key);
@@ -135,6 +141,8 @@ class ScriptedPlayer {
   /// for the progress over stuck_after_s.
   std::vector<vec2> history_;
   int64_t frames_seen_ = 0;
+  int lost_frames_ = 0;  ///< Frames in a row with no point of the route in sight.
+  int replans_ = 0;
 
   // The human.
   std::mt19937_64 rng_;
@@ -147,15 +155,5 @@ class ScriptedPlayer {
   double pressed_since_ = 0;
   double last_wiggle_s_ = -1e9;
 };
-
-/// The lowest body the library moves in: the minimum over locomotion segments of the highest
-/// point of their collision volumes (crouch-walking for the default library). 1.85 m when the
-/// library has no locomotion.
-float lowest_moving_body_m(const MotionLibrary& library);
-
-/// The clearance a route needs for the library's walkers: half the median width of its
-/// locomotion segments' bodies (segment_body) plus 3 cm of room to steer (the look-ahead checks
-/// every motion exactly: only those that fit are taken); 0.35 m for a library with no locomotion.
-float moving_body_clearance_m(const MotionLibrary& library);
 
 }  // namespace foresight

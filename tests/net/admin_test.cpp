@@ -92,6 +92,7 @@ TEST(Admin, MetricsAndStatusAreTheServersOwnFigures) {
   EXPECT_GT(sample(m, "foresight_snapshot_avatars_total"), 10.0);
   EXPECT_EQ(sample(m, "foresight_snapshot_avatars_delta_total"), 0.0) << "a raw client acknowledges no snapshot";
   EXPECT_EQ(sample(m, "foresight_steered_frames_total"), static_cast<double>(r.server.counters().steered_frames));
+  EXPECT_EQ(sample(m, "foresight_recoveries_total"), static_cast<double>(r.server.counters().recoveries));
   // Drops by reason add up to the server's total, and the garbage datagram is among them.
   double dropped = 0;
   const std::regex drop_line("foresight_packets_dropped_total\\{reason=\"[a-z_]+\"\\} ([0-9]+)");

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
                  "Root steering of the avatar between segment ends (MotionTreeConfig::steer_rad_per_s; 0: off)")
       ->check(CLI::Range(0.0f, 3600.0f))
       ->capture_default_str();
-  app.add_option("--trace", trace, "Also write the avatar's root per frame (CSV: t, x, z) here");
+  app.add_option("--trace", trace, "Also write the avatar's root and segment per frame (CSV: t, x, z, segment) here");
   CLI11_PARSE(app, argc, argv);
   config.replay.tree.steer_rad_per_s = radians(steer_deg_per_s);
 
@@ -73,10 +73,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "foresight-record: %s: cannot open for writing\n", trace.c_str());
       return 1;
     }
-    std::fprintf(f, "t,x,z\n");
+    std::fprintf(f, "t,x,z,segment\n");
     for (size_t i = 0; i < g.run.path.size(); ++i)
-      std::fprintf(f, "%.4f,%.4f,%.4f\n", static_cast<double>(i) * config.replay.frame_interval_s,
-                   g.run.path[i].x, g.run.path[i].y);
+      std::fprintf(f, "%.4f,%.4f,%.4f,%s\n", static_cast<double>(i) * config.replay.frame_interval_s,
+                   g.run.path[i].x, g.run.path[i].y, lib.graph.segments[g.run.segments[i]].name.c_str());
     std::fclose(f);
   }
   std::printf("%s: scene %s, spawn (%.2f, %.2f) -> goal (%.2f, %.2f), seed %llu, library %s\n", out.c_str(),
@@ -89,12 +89,12 @@ int main(int argc, char** argv) {
   std::printf("\n  duration %.2f s, %zu samples, goal %s", g.recording.duration_s(), g.recording.samples.size(),
               g.reached_goal ? "reached" : "NOT reached");
   if (g.reached_goal) std::printf(" at %.2f s", g.run.time_to_goal_s);
-  std::printf("\n  avatar: %.1f m walked, %d fallbacks, %lld colliding frames, mean tree %.0f nodes\n",
+  std::printf("\n  avatar: %.1f m walked, %d fallbacks, %d stalls, %lld colliding frames, mean tree %.0f nodes\n",
               [&] {
                 double d = 0;
                 for (size_t i = 1; i < g.run.path.size(); ++i) d += glm::length(g.run.path[i] - g.run.path[i - 1]);
                 return d;
               }(),
-              g.run.fallbacks, static_cast<long long>(g.run.colliding_frames), g.run.avg_tree_size);
+              g.run.fallbacks, g.run.stalls, static_cast<long long>(g.run.colliding_frames), g.run.avg_tree_size);
   return g.reached_goal ? 0 : 2;
 }
