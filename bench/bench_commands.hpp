@@ -1,6 +1,8 @@
 #pragma once
 // Subcommands of foresight-bench. Each prints the machine it ran on, its figures, and with `json`
 // one JSON object as its last line. Returns the process exit code.
+#include "library/library_source.hpp"
+
 #include <string>
 #include <vector>
 
@@ -55,6 +57,15 @@ struct FighterBenchOptions {
   bool json = false;
 };
 int bench_fighter(const FighterBenchOptions& options);
+
+struct MotionQualityBenchOptions {
+  std::string scene = "maze";
+  MotionSource motions;  ///< Default: the built-in library.
+  int seeds = 10;
+  double max_seconds = 120.0;
+  bool json = false;
+};
+int bench_motion_quality(const MotionQualityBenchOptions& options);
 
 struct LoadReportOptions {
   std::vector<std::string> inputs;  ///< Files whose last JSON line is foresight-bots --json output.

@@ -6,8 +6,10 @@
 //   foresight-bench client [--avatars 1000] [--seconds 3] [--json]   (when foresight_client is built)
 //   foresight-bench fighter [--figure DIR] [--json]
 //   foresight-bench terrain [--seed 1] [--json]
+//   foresight-bench motion-quality [--scene maze] [--motions DIR] [--seeds 10] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
+#include "library/motion_source_cli.hpp"
 #include "terrain_bench.hpp"
 
 #include <CLI/CLI.hpp>
@@ -86,6 +88,14 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 10000000));
   te->add_flag("--json", terrain.json, "Print one JSON object as the last line");
 
+  MotionQualityBenchOptions quality;
+  auto* mq = app.add_subcommand("motion-quality", "Closed-loop players: foot skate, pops, limits, response on the shown poses");
+  mq->add_option("--scene", quality.scene, "Built-in scene name or scene .json path");
+  foresight::add_motion_source_options(*mq, quality.motions);
+  mq->add_option("--seeds", quality.seeds, "Closed-loop player seeds per controller")->check(CLI::Range(1, 1000));
+  mq->add_option("--max-seconds", quality.max_seconds, "Time cap of a run")->check(CLI::Range(1.0, 3600.0));
+  mq->add_flag("--json", quality.json, "Print one JSON object as the last line");
+
   LoadReportOptions load;
   auto* lr = app.add_subcommand("load-report", "Table, CSV and chart from foresight-bots --json outputs (scripts/loadtest)");
   lr->add_option("inputs", load.inputs, "Files ending in a foresight-bots --json line")->required();
@@ -93,6 +103,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (*lr) return bench_load_report(load);
+  if (*mq) return bench_motion_quality(quality);
 #ifdef FORESIGHT_HAVE_CLIENT
   if (*cl) return bench_client(client);
 #endif

@@ -2,6 +2,7 @@
 
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
+#include "library/foot_contact.hpp"
 #include "library/pose_check.hpp"
 
 #include <xxhash.h>
@@ -129,8 +130,10 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   lib.clip_forward_axis.clear();
   lib.clip_track_offset.clear();
   lib.root_track.clear();
+  lib.foot_contact.clear();
   std::vector<Placement> track;
   for (const Clip& c : lib.clips) {
+    clip_foot_contact(lib.skeleton, c, lib.foot_contact);
     const vec3 axis = find_forward_axis(lib.skeleton, c);
     extract_root_track(c, axis, track);
     lib.clip_forward_axis.push_back(axis);

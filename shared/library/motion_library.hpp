@@ -38,6 +38,9 @@ struct MotionLibrary {
   std::vector<vec3> clip_forward_axis;   ///< Pelvis-local forward axis per clip.
   std::vector<int> clip_track_offset;    ///< Start of each clip's frames in root_track.
   std::vector<Placement> root_track;     ///< Root placement per clip frame, clip space.
+  /// FootContactBit per clip frame (indexed like root_track): which parts of the feet the clip
+  /// plants (foot_contact.hpp).
+  std::vector<uint8_t> foot_contact;
   std::vector<SegmentMotion> segment_motion;
   /// Per segment: body volumes of frames [first_frame, end_frame] (end inclusive), in the
   /// segment's own frame (its start placement is the origin facing +Z), ready for
@@ -52,6 +55,9 @@ struct MotionLibrary {
   int num_joints() const { return skeleton.num_joints(); }
   Placement root_placement(int clip, int frame) const {
     return root_track[static_cast<size_t>(clip_track_offset[clip] + frame)];
+  }
+  uint8_t foot_contact_at(int clip, int frame) const {
+    return foot_contact[static_cast<size_t>(clip_track_offset[clip] + frame)];
   }
   std::span<const BodyVolume> volumes(int segment) const { return segment_shapes[segment].frames; }
   /// Index of a transition from -> to, or -1.

@@ -5,6 +5,7 @@
 #include "library/playback.hpp"
 #include "world/collision_world.hpp"
 
+#include <span>
 #include <vector>
 
 namespace foresight {
@@ -29,5 +30,10 @@ struct PoseCheckScratch {
 /// grazes a wall on the server is not counted as inside it.
 bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& world,
                          const PlaybackState& state, PoseCheckScratch& scratch, float tolerance_m = 0.0f);
+
+/// The flesh test of shown_pose_collides for world joint positions (a pose after the pose stage):
+/// any joint grown by the library's flesh margin, over the body's height range, overlaps a box.
+bool shown_joints_collide(const MotionLibrary& library, const CollisionWorld& world,
+                          std::span<const vec3> joints_world_m, float tolerance_m = 0.0f);
 
 }  // namespace foresight

@@ -1,0 +1,181 @@
+#include "lab/motion_quality.hpp"
+
+#include "anim/canonical_skeleton.hpp"
+#include "anim/fk.hpp"
+#include "lab/lab_experiments.hpp"
+#include "library/foot_contact.hpp"
+#include "library/pose_check.hpp"
+#include "lookahead/replay.hpp"
+#include "lookahead/scripted_player.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight::lab {
+namespace {
+
+constexpr float kBoneSlack_m = 0.01f;
+
+// The largest joint acceleration of one frame of shown positions.
+float largest_acceleration(const std::vector<vec3>& before, const std::vector<vec3>& now,
+                           const std::vector<vec3>& after) {
+  float largest = 0.0f;
+  for (size_t j = 0; j < now.size(); ++j)
+    largest = std::max(largest, glm::length(after[j] - 2.0f * now[j] + before[j]));
+  return largest;
+}
+
+// A leg whose bones changed length or whose knee bends the other way from the animation's.
+bool leg_violates(std::span<const vec3> shown, std::span<const vec3> animated, size_t hip) {
+  const size_t knee = hip + 1, ankle = hip + 2;
+  const auto bone = [](std::span<const vec3> p, size_t a, size_t b) { return glm::length(p[b] - p[a]); };
+  if (std::abs(bone(shown, hip, knee) - bone(animated, hip, knee)) > kBoneSlack_m ||
+      std::abs(bone(shown, knee, ankle) - bone(animated, knee, ankle)) > kBoneSlack_m)
+    return true;
+  const auto bend = [&](std::span<const vec3> p) {
+    const vec3 axis = p[ankle] - p[hip];
+    const float len2 = glm::dot(axis, axis);
+    const vec3 k = p[knee] - p[hip];
+    return len2 > 0.0f ? k - axis * (glm::dot(k, axis) / len2) : vec3(0.0f);
+  };
+  const vec3 a = bend(animated), s = bend(shown);
+  // Only a clearly bent animated knee has a side to keep (a straight one may flip by noise).
+  return glm::length(a) > 0.02f && glm::dot(a, s) < 0.0f;
+}
+
+struct Accumulator {
+  std::vector<double> skate_cm_per_s, ground_cm, response_ms;
+  MotionQualityResult r;
+};
+
+void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Scene& scene,
+                 const MotionQualityController& c, const MotionQualityOptions& o, uint64_t seed,
+                 float pop_threshold, Accumulator& acc) {
+  const SpawnPoint& spawn = scene.spawns.front();
+  const GoalPoint& goal = scene.goals.front();
+  const Placement start{spawn.pos_m, spawn.heading_rad};
+  ScriptedPlayerConfig pc;
+  pc.seed = seed;
+  ScriptedPlayer player;
+  std::string error;
+  if (!player.plan(lib, scene, world, start, goal.pos_m, pc, error)) return;
+  ReplayConfig rc;
+  rc.tree = c.tree;
+  rc.expansions_per_frame = o.expansions_per_frame;
+  rc.max_seconds = o.max_seconds;
+  ReplayRun run(lib, world, start, goal.pos_m, goal.radius_m, rc);
+  if (!run.ok()) return;
+  PoseStageConfig sc;
+  sc.foot_locking = sc.inertialization = sc.turn_easing = c.pose_stage;
+  PoseStage stage(lib, sc);
+  const float dt = static_cast<float>(rc.frame_interval_s);
+  const size_t n = static_cast<size_t>(lib.num_joints());
+  std::vector<vec3> before(n), now(n), after(n), animated(n);
+  uint8_t contact_before = 0;
+  int64_t frame = 0;
+  while (!run.done()) {
+    run.frame(player.frame(run.time_s(), run.avatar().root().pos_m));
+    const std::span<const vec3> shown = stage.update(run.avatar().playback(), frame == 0 ? 0.0f : dt);
+    const uint8_t contact = stage.contact();
+    before.swap(now);
+    now.swap(after);
+    std::copy(shown.begin(), shown.end(), after.begin());
+    if (frame >= 2 && largest_acceleration(before, now, after) > pop_threshold) ++acc.r.pops;
+    if (shown_joints_collide(lib, world, shown)) ++acc.r.shown_collisions;
+    if (frame >= 1 && n > kCanonRightToeEnd) {
+      for (int foot = 0; foot < 2; ++foot) {
+        const bool ball = contact & foot_ball_bit(foot), heel = contact & foot_heel_bit(foot);
+        if (!ball && !heel) continue;
+        const int joint = ball ? foot_ball_joint(foot) : foot_heel_joint(foot);
+        const uint8_t bit = ball ? foot_ball_bit(foot) : foot_heel_bit(foot);
+        const vec3 p = after[static_cast<size_t>(joint)];
+        float ground = 0.0f;
+        if (ground_height_at(world, vec2(p.x, p.z), ground))
+          acc.ground_cm.push_back(100.0 * std::abs(p.y - (ground + stage.animated()[static_cast<size_t>(joint)].y)));
+        if (!(contact_before & bit)) continue;  // planted this frame: no speed yet
+        const vec3 q = now[static_cast<size_t>(joint)];
+        acc.skate_cm_per_s.push_back(100.0 * std::hypot(p.x - q.x, p.z - q.z) / dt);
+      }
+      if (leg_violates(shown, stage.animated(), kCanonLeftUpLeg) || leg_violates(shown, stage.animated(), kCanonRightUpLeg))
+        ++acc.r.limit_violations;
+    }
+    contact_before = contact;
+    ++frame;
+  }
+  const ReplayResult res = run.finish();
+  acc.r.runs += 1;
+  acc.r.goals_reached += res.reached_goal ? 1 : 0;
+  acc.r.minutes += res.seconds / 60.0;
+  acc.r.played_collisions += res.colliding_frames;
+  acc.r.discontinuities += stage.discontinuities();
+  for (const double ms : response_ms(res)) acc.response_ms.push_back(ms);
+}
+
+}  // namespace
+
+std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_per_s) {
+  MotionTreeConfig paper;
+  MotionTreeConfig steered;
+  steered.steer_rad_per_s = steer_rad_per_s;
+  return {{"look-ahead 1 command (the paper's)", paper, false},
+          {"look-ahead 1 + steering, no pose stage", steered, false},
+          {"look-ahead 1 + steering + pose stage", steered, true}};
+}
+
+float library_pop_threshold(const MotionLibrary& lib) {
+  std::vector<double> largest;
+  std::vector<vec3> pos;
+  for (const Clip& c : lib.clips) {
+    fk_clip_positions(lib.skeleton, c, pos);
+    const auto n = static_cast<size_t>(c.num_joints);
+    for (int f = 1; f + 1 < c.num_frames; ++f) {
+      float m = 0.0f;
+      for (size_t j = 0; j < n; ++j) {
+        const size_t i = static_cast<size_t>(f) * n + j;
+        m = std::max(m, glm::length(pos[i + n] - 2.0f * pos[i] + pos[i - n]));
+      }
+      largest.push_back(m);
+    }
+  }
+  return static_cast<float>(percentile(largest, 99.9));
+}
+
+std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& library, const Scene& scene,
+                                                        const CollisionWorld& world,
+                                                        const std::vector<MotionQualityController>& controllers,
+                                                        const MotionQualityOptions& options, std::string& error) {
+  if (scene.spawns.empty() || scene.goals.empty()) {
+    error = "motion quality: scene '" + scene.name + "' needs a spawn and a goal";
+    return {};
+  }
+  ScriptedPlayer probe;
+  if (!probe.plan(library, scene, world, {scene.spawns.front().pos_m, scene.spawns.front().heading_rad},
+                  scene.goals.front().pos_m, ScriptedPlayerConfig{}, error))
+    return {};
+  const float pop_threshold = library_pop_threshold(library);
+  std::vector<MotionQualityResult> results;
+  for (const MotionQualityController& c : controllers) {
+    Accumulator acc;
+    acc.r.controller = c.name;
+    acc.r.pose_stage = c.pose_stage;
+    for (int seed = 1; seed <= options.seeds; ++seed)
+      measure_run(library, world, scene, c, options, static_cast<uint64_t>(seed), pop_threshold, acc);
+    MotionQualityResult& r = acc.r;
+    r.contact_samples = static_cast<int64_t>(acc.skate_cm_per_s.size());
+    r.foot_skate_cm_per_s_p50 = percentile(acc.skate_cm_per_s, 50);
+    r.foot_skate_cm_per_s_p95 = percentile(acc.skate_cm_per_s, 95);
+    r.foot_skate_cm_per_s_max = acc.skate_cm_per_s.empty()
+                                    ? 0.0
+                                    : *std::max_element(acc.skate_cm_per_s.begin(), acc.skate_cm_per_s.end());
+    r.ground_error_cm_p95 = percentile(acc.ground_cm, 95);
+    r.pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.pops) / r.minutes : 0.0;
+    r.response_ms_p50 = percentile(acc.response_ms, 50);
+    r.response_ms_p95 = percentile(acc.response_ms, 95);
+    r.collisions = std::max(r.played_collisions, r.shown_collisions);
+    r.goals_reached_share = r.runs > 0 ? static_cast<double>(r.goals_reached) / r.runs : 0.0;
+    results.push_back(r);
+  }
+  return results;
+}
+
+}  // namespace foresight::lab

@@ -1,0 +1,77 @@
+#pragma once
+// Motion quality as a player sees it (issue 18): closed-loop players (the recordings' scripted
+// player, seeds 1..N, from the scene's first spawn to its first goal) steer each controller, and
+// every shown pose (the playback after the pose stage, or the raw playback without it) is
+// measured:
+//  * foot skate: horizontal speed of the planted part of a foot (heel or ball, as the clip plants
+//    it: foot_contact.hpp) between two frames in which it stays planted, cm/s;
+//  * ground error: how far the planted part is from the ground under it plus its height above the
+//    clip's own floor, cm (flat scenes: what the stage moved it up or down);
+//  * pops: frames where some joint's acceleration (second difference of its position) exceeds the
+//    library's own within-clip 99.9th percentile of the per-frame largest joint acceleration;
+//  * limit violations: frames where a leg bone's length differs by more than 1 cm from the
+//    animated one or a knee bends the other way;
+//  * response (ReplayResult::responses), goals reached, and colliding frames: of the played pose
+//    (the replay's FK check) and of the shown one (shown_joints_collide: the stage moves feet and
+//    lags the body's turn), the larger count.
+#include "library/pose_stage.hpp"
+#include "lookahead/motion_tree.hpp"
+#include "world/collision_world.hpp"
+#include "world/scene.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace foresight::lab {
+
+struct MotionQualityController {
+  std::string name;
+  MotionTreeConfig tree;
+  bool pose_stage = false;
+};
+
+/// The paper's controller, steering without the pose stage, steering with it (the default).
+std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_per_s);
+
+struct MotionQualityOptions {
+  int seeds = 10;
+  double max_seconds = 120.0;
+  int64_t expansions_per_frame = 200;
+};
+
+struct MotionQualityResult {
+  std::string controller;
+  bool pose_stage = false;
+  int runs = 0;
+  int goals_reached = 0;
+  double minutes = 0.0;              ///< Shown time over every run.
+  int64_t contact_samples = 0;       ///< Planted-foot frame pairs measured for skate.
+  double foot_skate_cm_per_s_p50 = 0.0;
+  double foot_skate_cm_per_s_p95 = 0.0;
+  double foot_skate_cm_per_s_max = 0.0;
+  double ground_error_cm_p95 = 0.0;
+  int64_t pops = 0;
+  double pops_per_min = 0.0;
+  int64_t limit_violations = 0;
+  int64_t discontinuities = 0;       ///< Jumps the pose stage inertialized.
+  double response_ms_p50 = 0.0;
+  double response_ms_p95 = 0.0;
+  int64_t played_collisions = 0;     ///< Frames whose played pose overlaps the scene (ReplayRun's FK check).
+  int64_t shown_collisions = 0;      ///< Frames whose shown pose (after the stage) does (shown_joints_collide).
+  int64_t collisions = 0;            ///< The larger of the two.
+  double goals_reached_share = 0.0;
+};
+
+/// The per-frame largest joint acceleration (m per frame^2) that 99.9 % of the library's clip
+/// frames stay under.
+float library_pop_threshold(const MotionLibrary& library);
+
+/// Runs every controller; results in the controllers' order. `error` is set (and the result
+/// empty) when the scene has no spawn or goal or the player cannot plan.
+std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& library, const Scene& scene,
+                                                        const CollisionWorld& world,
+                                                        const std::vector<MotionQualityController>& controllers,
+                                                        const MotionQualityOptions& options, std::string& error);
+
+}  // namespace foresight::lab

@@ -1,0 +1,175 @@
+#include "library/pose_stage.hpp"
+
+#include "anim/canonical_skeleton.hpp"
+#include "anim/fk.hpp"
+#include "library/foot_contact.hpp"
+#include "math/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace foresight {
+namespace {
+
+// 1 at the start, 0 at the end, flat at both (smoothstep of the time left).
+float decay(float left_s, float total_s) {
+  if (total_s <= 0.0f || left_s <= 0.0f) return 0.0f;
+  const float x = std::clamp(left_s / total_s, 0.0f, 1.0f);
+  return x * x * (3.0f - 2.0f * x);
+}
+
+// Largest distance a joint moves between two frames of a clip, over the library's clips.
+float largest_clip_step_m(const MotionLibrary& lib) {
+  float largest = 0.0f;
+  std::vector<vec3> pos;
+  for (const Clip& c : lib.clips) {
+    fk_clip_positions(lib.skeleton, c, pos);
+    const auto n = static_cast<size_t>(c.num_joints);
+    for (size_t i = n; i < pos.size(); ++i) largest = std::max(largest, glm::length(pos[i] - pos[i - n]));
+  }
+  return largest;
+}
+
+}  // namespace
+
+PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
+    : library_(library), config_(config) {
+  // A jump is anything beyond the fastest joint of any clip (a kick's foot, about 0.3 m a frame
+  // at 30 fps), with a margin for root steering's rotation of the whole body.
+  jump_m_ = 1.25f * largest_clip_step_m(library) + 0.02f;
+  const auto n = static_cast<size_t>(library.num_joints());
+  animated_.resize(n);
+  shown_.resize(n);
+  previous_.resize(n);
+  previous_animated_.resize(n);
+  offset_.resize(n);
+  rotations_.resize(n);
+}
+
+std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s) {
+  playback_pose(library_, state, pose_);
+  fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, animated_, rotations_);
+  const Segment& seg = library_.graph.segments[state.segment];
+  const int clip_frame = std::min(seg.first_frame + state.frame, library_.clips[seg.clip].num_frames - 1);
+  contact_ = library_.foot_contact.empty() ? 0 : library_.foot_contact_at(seg.clip, clip_frame);
+  shown_ = animated_;
+  if (config_.inertialization) inertialize(dt_s);
+  if (config_.turn_easing) ease_turn(state, dt_s);
+  if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
+    for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
+  previous_ = shown_;
+  previous_animated_ = animated_;
+  previous_state_ = state;
+  has_previous_ = true;
+  return shown_;
+}
+
+void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
+  // The steering's turn this frame: the same segment playing on with its start rotated.
+  if (has_previous_ && state.segment == previous_state_.segment && state.frame >= previous_state_.frame)
+    yaw_offset_ -= wrap_angle(state.segment_start.heading_rad - previous_state_.segment_start.heading_rad);
+  // Critically damped spring towards 0, solved exactly over dt (stable at any step).
+  const float k = config_.turn_stiffness, e = std::exp(-k * dt_s);
+  const float x = yaw_offset_, v = yaw_speed_;
+  yaw_offset_ = (x + (v + k * x) * dt_s) * e;
+  yaw_speed_ = (v - k * (v + k * x) * dt_s) * e;
+  if (std::abs(yaw_offset_) < 1e-5f && std::abs(yaw_speed_) < 1e-4f) yaw_offset_ = yaw_speed_ = 0.0f;
+  if (yaw_offset_ == 0.0f) return;
+  const vec2 pivot = playback_root(library_, state).pos_m;  // what the steering turns about
+  for (vec3& p : shown_) {
+    const vec2 g = pivot + rotate_ground(ground(p) - pivot, yaw_offset_);
+    p.x = g.x;
+    p.z = g.y;
+  }
+}
+
+void PoseStage::inertialize(float dt_s) {
+  if (has_previous_) {
+    bool jumped = false;
+    for (size_t j = 0; j < animated_.size() && !jumped; ++j)
+      jumped = glm::length(animated_[j] - previous_animated_[j]) > jump_m_;
+    if (jumped) {
+      // What was shown last frame is where the new pose starts from: the jump is carried as an
+      // offset and decays. Foot locks are taken again where the feet now are.
+      for (size_t j = 0; j < animated_.size(); ++j) offset_[j] = previous_[j] - animated_[j];
+      offset_left_s_ = config_.inertialize_s;
+      ++discontinuities_;
+      for (FootLock& f : feet_) f = FootLock{};
+      yaw_offset_ = yaw_speed_ = 0.0f;
+      dt_s = 0.0f;
+    }
+  }
+  offset_left_s_ = std::max(0.0f, offset_left_s_ - dt_s);
+  const float w = decay(offset_left_s_, config_.inertialize_s);
+  if (w <= 0.0f) return;
+  for (size_t j = 0; j < shown_.size(); ++j) shown_[j] += w * offset_[j];
+}
+
+void PoseStage::lock_foot(int foot, float dt_s) {
+  FootLock& f = feet_[foot];
+  const bool ball = (contact_ & foot_ball_bit(foot)) != 0;
+  const bool heel = (contact_ & foot_heel_bit(foot)) != 0;
+  f.release_left_s = std::max(0.0f, f.release_left_s - dt_s);
+  const float w = decay(f.release_left_s, config_.release_s);
+  if (ball || heel) {
+    const int joint = ball ? foot_ball_joint(foot) : foot_heel_joint(foot);
+    const vec3 here = shown_[static_cast<size_t>(joint)];
+    if (f.release_left_s > 0.0f && f.stepping) {
+      // A step under way: the foot travels to where the clip has it along a low arc, and is
+      // planted there when it lands.
+      const float lift = config_.step_height_m * std::sin(kPi * (1.0f - f.release_left_s / config_.release_s));
+      reach(foot, w * f.release + vec3(0.0f, lift, 0.0f));
+      contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
+      f.locked = false;
+      return;
+    }
+    // Planted now, or rolling from heel to ball: hold the part planted where it is shown now.
+    if (!f.locked || f.joint != joint) f = FootLock{true, joint, here + w * f.release, vec3(0.0f), 0.0f, false};
+    const vec3 offset = f.at - here;
+    if (glm::length(offset) > config_.max_lock_offset_m) {
+      // The body has turned or moved too far over the planted foot: it steps to where the clip has it.
+      f = FootLock{false, joint, here, offset, config_.release_s, true};
+      reach(foot, offset);
+      return;
+    }
+    f.release = offset;
+    f.release_left_s = config_.release_s;
+    f.stepping = false;
+    reach(foot, offset);
+    return;
+  }
+  f.locked = false;
+  if (w > 0.0f) reach(foot, w * f.release);
+}
+
+// Moves the foot by `offset` (ankle and everything below it) and bends the leg to reach it: the
+// knee stays in the plane of hip, new ankle and the animated knee, at the bone lengths.
+void PoseStage::reach(int foot, vec3 offset) {
+  if (glm::dot(offset, offset) < 1e-10f) return;
+  const size_t hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
+  const size_t knee = hip + 1, ankle = hip + 2;
+  const vec3 h = shown_[hip], k = shown_[knee], a = shown_[ankle];
+  const float upper = glm::length(k - h), lower = glm::length(a - k);
+  if (upper < 1e-4f || lower < 1e-4f) return;
+  vec3 target = a + offset;
+  vec3 to = target - h;
+  float d = glm::length(to);
+  const float longest = 0.999f * (upper + lower), shortest = std::abs(upper - lower) + 1e-3f;
+  if (d < 1e-4f) return;
+  const vec3 dir = to / d;
+  d = std::clamp(d, shortest, longest);
+  target = h + dir * d;
+  // The bend: the animated knee's offset from the hip-ankle line, kept on its side.
+  vec3 bend = (k - h) - dir * glm::dot(k - h, dir);
+  if (glm::dot(bend, bend) < 1e-8f) bend = vec3(0.0f, 0.0f, 1.0f) - dir * dir.z;
+  bend = glm::normalize(bend);
+  const float along = (upper * upper - lower * lower + d * d) / (2.0f * d);
+  const float out = std::sqrt(std::max(0.0f, upper * upper - along * along));
+  const vec3 moved = target - a;
+  shown_[knee] = h + dir * along + bend * out;
+  shown_[ankle] = target;
+  // The foot below the ankle (ball, toe end) moves with it.
+  for (size_t j = ankle + 1; j <= ankle + 2 && j < shown_.size(); ++j) shown_[j] += moved;
+}
+
+}  // namespace foresight

@@ -1,0 +1,94 @@
+#pragma once
+// The pose stage: what is shown (drawn by the client, measured by the motion-quality bench) is the
+// playback's pose after this, one stage per avatar, called once per shown frame.
+//
+//  1. Inertialization. When the sampled pose jumps (any joint moves further in one frame than the
+//     library's clips ever move one: a fallback to idle, a snapshot correction, a reconnect), the
+//     jump becomes an offset from the new pose that decays to zero over `inertialize_s` (smoothstep,
+//     so it starts flat and lands flat) instead of a pop.
+//  2. Turn easing. Root steering turns the whole body about the root at up to 540 deg/s, starting
+//     and stopping at full speed: a hand 0.4 m from the root would jump 0.13 m a frame. The
+//     steering's part of the turn (the segment's start rotated while the segment plays on) is
+//     shown through a critically damped spring (`turn_stiffness`): the body follows within a few
+//     frames, its turning speed eased in and out.
+//  3. Foot locking. While the clip plants a foot (foot_contact.hpp: heel or ball), that part keeps
+//     the world position it had when it was planted, through root steering, blends and the
+//     decaying offsets above; the leg reaches it by two-bone IK (hip, knee, ankle: bone lengths
+//     kept, the knee bent the way the animation bends it, never fully straight), and the foot
+//     below the ankle moves with the ankle. When the body has turned or moved so far over a
+//     planted foot that it is more than `max_lock_offset_m` from where the clip has it (turning on
+//     the spot by root steering), the foot steps there: over `release_s`, lifted along a low arc
+//     (`step_height_m`), shown as not planted. When the clip lifts the foot the lock's offset
+//     decays over `release_s`.
+// Works on world joint positions, which is what the client draws (a bone per parent-child pair)
+// and what is measured; joint rotations are not rewritten. No allocation after the first frame.
+#include "library/motion_library.hpp"
+#include "library/playback.hpp"
+
+#include <span>
+#include <vector>
+
+namespace foresight {
+
+struct PoseStageConfig {
+  bool foot_locking = true;
+  bool inertialization = true;
+  bool turn_easing = true;
+  float turn_stiffness = 30.0f;  ///< 1/s of the spring (lag at 540 deg/s: 2 x rate / stiffness, 18 deg).
+  float inertialize_s = 0.2f;
+  float release_s = 0.2f;
+  float max_lock_offset_m = 0.15f;
+  float step_height_m = 0.05f;  ///< Apex of a step taken when the body turned too far over a planted foot.
+};
+
+class PoseStage {
+ public:
+  explicit PoseStage(const MotionLibrary& library, PoseStageConfig config = {});
+
+  /// The shown pose of `state`, `dt_s` after the previous call: world joint positions.
+  std::span<const vec3> update(const PlaybackState& state, float dt_s);
+  /// Forget the previous frame (a new avatar, a teleport the caller wants shown as one).
+  void reset() { has_previous_ = false; }
+
+  /// The pose as sampled this frame, before the stage.
+  std::span<const vec3> animated() const { return animated_; }
+  std::span<const vec3> shown() const { return shown_; }
+  /// This frame's FootContactBit byte: the clip frame's, less the feet the stage is stepping.
+  uint8_t contact() const { return contact_; }
+  /// Frames whose sampled pose jumped and were inertialized, since construction.
+  int discontinuities() const { return discontinuities_; }
+  /// The largest per-frame joint displacement within the library's clips: more is a jump.
+  float jump_m() const { return jump_m_; }
+  const PoseStageConfig& config() const { return config_; }
+
+ private:
+  struct FootLock {
+    bool locked = false;
+    int joint = -1;          ///< The planted part: heel (ankle) or ball.
+    vec3 at{0.0f};           ///< Where it is held, world.
+    vec3 release{0.0f};      ///< Offset being let go of after a lift (or a step).
+    float release_left_s = 0;
+    bool stepping = false;   ///< The release is a step: the foot is lifted, not planted.
+  };
+  void inertialize(float dt_s);
+  void ease_turn(const PlaybackState& state, float dt_s);
+  void lock_foot(int foot, float dt_s);
+  void reach(int foot, vec3 offset);
+
+  const MotionLibrary& library_;
+  PoseStageConfig config_;
+  float jump_m_ = 0.5f;
+  Pose pose_;
+  std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_;
+  std::vector<quat> rotations_;
+  bool has_previous_ = false;
+  PlaybackState previous_state_;
+  float yaw_offset_ = 0.0f;  ///< Shown minus played heading (rad), decaying.
+  float yaw_speed_ = 0.0f;   ///< Its rate (rad/s).
+  float offset_left_s_ = 0;
+  uint8_t contact_ = 0;
+  int discontinuities_ = 0;
+  FootLock feet_[2];
+};
+
+}  // namespace foresight
