@@ -15,6 +15,7 @@
 
 #include "fighter/morphology.hpp"
 #include "library/playback.hpp"
+#include "library/pose_stage.hpp"
 #include "protocol/client_connection.hpp"
 #include "protocol/protocol.hpp"
 #include "world/data_paths.hpp"
@@ -30,6 +31,7 @@
 #include <cstdio>
 #include <memory>
 #include <thread>
+#include <unordered_map>
 
 namespace foresight::client {
 
@@ -196,6 +198,10 @@ class Session {
 
   std::vector<AvatarEntry> entries_;
   std::vector<ShownAvatar> shown_;
+  /// Per avatar shown from the library: its pose stage (foot locking, eased turns, no pops),
+  /// kept while it is shown (docs/MOTION_QUALITY.md).
+  std::unordered_map<uint32_t, PoseStage> poses_;
+  double last_draw_s_ = -1.0;
   std::vector<PlaybackState> ghosts_;  ///< Tree overlay scratch: the chosen branch's ghost poses.
   std::vector<FighterPoseSample> shown_fighters_;
   std::vector<FighterPoseSample> shown_terrain_;
@@ -319,6 +325,9 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
   buffer_.sample(library_, render_t, shown_);
   fighters_.sample(render_t, shown_fighters_);
   const uint32_t own_id = connection_.accept().avatar;
+  const float dt = last_draw_s_ < 0.0 ? 0.0f : static_cast<float>(std::clamp(t - last_draw_s_, 0.0, 0.25));
+  last_draw_s_ = t;
+  std::erase_if(poses_, [this](const auto& p) { return shown_avatar(p.first) == nullptr; });
   for (const ShownAvatar& a : shown_) {
     const vec3 colour = colour_of(a, own_id);
     // A fighter with a streamed pose is drawn from it (draw_fighters), not from the library.
@@ -327,7 +336,9 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
                                             [](const auto& x, const auto& y) { return id_of(x) < id_of(y); });
     if (!fighter) {
       const float flash = strikes_.target_flash(a.id, t);
-      renderer_.add_avatar(library_, a.state, a.frame_alpha, glm::mix(colour, kFlashColour, flash));
+      PoseStage& stage = poses_.try_emplace(a.id, library_).first->second;
+      renderer_.add_skeleton(library_.skeleton.parents, stage.update(a.state, dt, a.frame_alpha),
+                             glm::mix(colour, kFlashColour, flash));
     }
     if (colour == kOwnColour) {
       const Placement root = playback_root(library_, a.state);

@@ -11,10 +11,12 @@ namespace foresight {
 int foot_heel_joint(int foot) { return foot == 0 ? kCanonLeftFoot : kCanonRightFoot; }
 int foot_ball_joint(int foot) { return foot == 0 ? kCanonLeftToeBase : kCanonRightToeBase; }
 
-void clip_foot_contact(const Skeleton& skeleton, const Clip& clip, std::vector<uint8_t>& out) {
+void clip_foot_contact(const Skeleton& skeleton, const Clip& clip, std::vector<uint8_t>& out, float& max_step_m) {
   std::vector<vec3> pos;
   fk_clip_positions(skeleton, clip, pos);
   const int n = clip.num_joints;
+  for (size_t i = static_cast<size_t>(n); i < pos.size(); ++i)
+    max_step_m = std::max(max_step_m, glm::length(pos[i] - pos[i - static_cast<size_t>(n)]));
   const int frames = clip.num_frames;
   const float dt = clip.fps > 0.0f ? 1.0f / clip.fps : 1.0f / 30.0f;
   const auto at = [&](int f, int j) { return pos[static_cast<size_t>(f) * static_cast<size_t>(n) + static_cast<size_t>(j)]; };

@@ -30,7 +30,8 @@ int foot_ball_joint(int foot);
 inline uint8_t foot_heel_bit(int foot) { return foot == 0 ? kLeftHeel : kRightHeel; }
 inline uint8_t foot_ball_bit(int foot) { return foot == 0 ? kLeftBall : kRightBall; }
 
-/// One contact byte per frame of `clip` (canonical skeleton), appended to `out`.
-void clip_foot_contact(const Skeleton& skeleton, const Clip& clip, std::vector<uint8_t>& out);
+/// One contact byte per frame of `clip` (canonical skeleton), appended to `out`; raises
+/// `max_step_m` to the farthest any joint moves between two of its frames (one FK pass for both).
+void clip_foot_contact(const Skeleton& skeleton, const Clip& clip, std::vector<uint8_t>& out, float& max_step_m);
 
 }  // namespace foresight

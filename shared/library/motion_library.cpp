@@ -132,8 +132,9 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   lib.root_track.clear();
   lib.foot_contact.clear();
   std::vector<Placement> track;
+  lib.max_joint_step_m = 0.0f;
   for (const Clip& c : lib.clips) {
-    clip_foot_contact(lib.skeleton, c, lib.foot_contact);
+    clip_foot_contact(lib.skeleton, c, lib.foot_contact, lib.max_joint_step_m);
     const vec3 axis = find_forward_axis(lib.skeleton, c);
     extract_root_track(c, axis, track);
     lib.clip_forward_axis.push_back(axis);

@@ -41,6 +41,8 @@ struct MotionLibrary {
   /// FootContactBit per clip frame (indexed like root_track): which parts of the feet the clip
   /// plants (foot_contact.hpp).
   std::vector<uint8_t> foot_contact;
+  /// The farthest any joint moves between two frames of a clip (the pose stage's jump test).
+  float max_joint_step_m = 0.0f;
   std::vector<SegmentMotion> segment_motion;
   /// Per segment: body volumes of frames [first_frame, end_frame] (end inclusive), in the
   /// segment's own frame (its start placement is the origin facing +Z), ready for

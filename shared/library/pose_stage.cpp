@@ -18,25 +18,13 @@ float decay(float left_s, float total_s) {
   return x * x * (3.0f - 2.0f * x);
 }
 
-// Largest distance a joint moves between two frames of a clip, over the library's clips.
-float largest_clip_step_m(const MotionLibrary& lib) {
-  float largest = 0.0f;
-  std::vector<vec3> pos;
-  for (const Clip& c : lib.clips) {
-    fk_clip_positions(lib.skeleton, c, pos);
-    const auto n = static_cast<size_t>(c.num_joints);
-    for (size_t i = n; i < pos.size(); ++i) largest = std::max(largest, glm::length(pos[i] - pos[i - n]));
-  }
-  return largest;
-}
-
 }  // namespace
 
 PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
     : library_(library), config_(config) {
   // A jump is anything beyond the fastest joint of any clip (a kick's foot, about 0.3 m a frame
   // at 30 fps), with a margin for root steering's rotation of the whole body.
-  jump_m_ = 1.25f * largest_clip_step_m(library) + 0.02f;
+  jump_m_ = 1.25f * library.max_joint_step_m + 0.02f;
   const auto n = static_cast<size_t>(library.num_joints());
   animated_.resize(n);
   shown_.resize(n);
@@ -46,9 +34,16 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   rotations_.resize(n);
 }
 
-std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s) {
+std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, float frame_alpha) {
   playback_pose(library_, state, pose_);
   fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, animated_, rotations_);
+  if (frame_alpha > 0.0f) {  // between two frames: joint positions interpolated, as drawn before
+    PlaybackState next = state;
+    next.frame += 1;
+    playback_pose(library_, next, pose_);
+    fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, shown_, rotations_);
+    for (size_t j = 0; j < animated_.size(); ++j) animated_[j] += frame_alpha * (shown_[j] - animated_[j]);
+  }
   const Segment& seg = library_.graph.segments[state.segment];
   const int clip_frame = std::min(seg.first_frame + state.frame, library_.clips[seg.clip].num_frames - 1);
   contact_ = library_.foot_contact.empty() ? 0 : library_.foot_contact_at(seg.clip, clip_frame);

@@ -45,8 +45,9 @@ class PoseStage {
  public:
   explicit PoseStage(const MotionLibrary& library, PoseStageConfig config = {});
 
-  /// The shown pose of `state`, `dt_s` after the previous call: world joint positions.
-  std::span<const vec3> update(const PlaybackState& state, float dt_s);
+  /// The shown pose of `state` (`frame_alpha` of the way to its next frame), `dt_s` after the
+  /// previous call: world joint positions.
+  std::span<const vec3> update(const PlaybackState& state, float dt_s, float frame_alpha = 0.0f);
   /// Forget the previous frame (a new avatar, a teleport the caller wants shown as one).
   void reset() { has_previous_ = false; }
 
@@ -57,7 +58,8 @@ class PoseStage {
   uint8_t contact() const { return contact_; }
   /// Frames whose sampled pose jumped and were inertialized, since construction.
   int discontinuities() const { return discontinuities_; }
-  /// The largest per-frame joint displacement within the library's clips: more is a jump.
+  /// A joint moving farther than this in a frame is a jump (MotionLibrary::max_joint_step_m
+  /// with a margin for root steering).
   float jump_m() const { return jump_m_; }
   const PoseStageConfig& config() const { return config_; }
 

@@ -1,0 +1,50 @@
+// The motion-quality measurement (issue 18) on a real closed loop: without the pose stage root
+// steering slides planted feet and pops; with it the feet stay planted, the turn is eased, and
+// the navigation (response, goals, collisions) is the same, because the stage only changes what
+// is shown.
+#include "lab/motion_quality.hpp"
+#include "library/library_source.hpp"
+#include "world/data_paths.hpp"
+
+#include <gtest/gtest.h>
+
+namespace foresight::lab {
+namespace {
+
+TEST(MotionQuality, ThePoseStageKeepsSteeredFeetPlantedAndChangesNothingElse) {
+  MotionLibrary lib = motion_library_default();
+  Scene scene;
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(scene_world_load("maze", scene, world, error)) << error;
+  MotionQualityOptions options;
+  options.seeds = 1;
+  options.max_seconds = 60;
+  const auto controllers = motion_quality_controllers(9.424778f);
+  ASSERT_EQ(controllers.size(), 3u);
+  ASSERT_FALSE(controllers[1].pose_stage);
+  ASSERT_TRUE(controllers[2].pose_stage);
+  const std::vector<MotionQualityResult> r = measure_motion_quality(lib, scene, world, controllers, options, error);
+  ASSERT_EQ(r.size(), 3u) << error;
+  const MotionQualityResult& raw = r[1];
+  const MotionQualityResult& staged = r[2];
+  EXPECT_GT(raw.contact_samples, 300);
+  EXPECT_GT(raw.foot_skate_cm_per_s_p95, 10.0) << "steering slides planted feet";
+  EXPECT_LT(staged.foot_skate_cm_per_s_p95, 2.0) << "the stage keeps them planted";
+  EXPECT_LT(staged.pops, raw.pops) << "and eases the turn";
+  EXPECT_EQ(raw.limit_violations, 0) << "played poses never violate";
+  EXPECT_LE(staged.limit_violations, 3);
+  EXPECT_EQ(staged.collisions, 0);
+  EXPECT_EQ(staged.goals_reached, raw.goals_reached);
+  EXPECT_EQ(staged.response_ms_p95, raw.response_ms_p95) << "what is shown does not steer";
+}
+
+TEST(MotionQuality, TheLibrarysPopThresholdIsItsOwnClipsNinetyNinePointNinthPercentile) {
+  const MotionLibrary lib = motion_library_default();
+  const float threshold = library_pop_threshold(lib);
+  EXPECT_GT(threshold, 0.01f);   // above walking's few mm per frame^2
+  EXPECT_LT(threshold, 0.4f);    // below NoJointPops' per-frame bound x 2
+}
+
+}  // namespace
+}  // namespace foresight::lab

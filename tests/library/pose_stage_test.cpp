@@ -1,0 +1,164 @@
+// The pose stage (issue 18): planted feet stay put while the root steers, jumps are inertialized,
+// the steering's turn is eased, legs keep their bones; and the foot contact it relies on.
+#include "anim/canonical_skeleton.hpp"
+#include "library/foot_contact.hpp"
+#include "library/library_source.hpp"
+#include "library/pose_stage.hpp"
+#include "library_checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace foresight {
+namespace {
+
+const MotionLibrary& library() {
+  static const MotionLibrary lib = motion_library_default();
+  return lib;
+}
+
+int planted_share_percent(const MotionLibrary& lib, const char* segment_name, uint8_t bits) {
+  const int s = lib.graph.find_segment(segment_name);
+  EXPECT_GE(s, 0) << segment_name;
+  if (s < 0) return -1;
+  const Segment& seg = lib.graph.segments[s];
+  int planted = 0;
+  for (int f = seg.first_frame; f < seg.end_frame; ++f) planted += (lib.foot_contact_at(seg.clip, f) & bits) != 0;
+  return 100 * planted / std::max(1, seg.end_frame - seg.first_frame);
+}
+
+TEST(FootContact, StandingPlantsBothFeetAndWalkingAlternates) {
+  const MotionLibrary& lib = library();
+  ASSERT_EQ(lib.foot_contact.size(), lib.root_track.size());
+  EXPECT_EQ(planted_share_percent(lib, "idle", kLeftHeel | kLeftBall), 100);
+  EXPECT_EQ(planted_share_percent(lib, "idle", kRightHeel | kRightBall), 100);
+  // A walking step: the stance foot is planted most of the step, the swing foot a part of it.
+  for (const char* step : {"walk_l", "walk_r"}) {
+    const int left = planted_share_percent(lib, step, kLeftHeel | kLeftBall);
+    const int right = planted_share_percent(lib, step, kRightHeel | kRightBall);
+    EXPECT_GE(std::max(left, right), 90) << step;
+    EXPECT_LE(std::min(left, right), 60) << step;
+  }
+}
+
+struct Leg {
+  float upper, lower;
+};
+Leg leg(std::span<const vec3> p, int hip) {
+  return {glm::length(p[hip + 1] - p[hip]), glm::length(p[hip + 2] - p[hip + 1])};
+}
+
+// Root steering turns a standing avatar about its root a few degrees a frame: the played feet
+// swing round with it, the shown ones stay where they were planted, on legs of unchanged length.
+TEST(PoseStage, PlantedFeetStayPutWhileTheRootTurns) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PoseStage stage(lib);
+  PlaybackState s{idle, 0, Placement{vec2(1.0f, 2.0f), 0.3f}, -1};
+  const int ball = kCanonLeftToeBase;
+  std::span<const vec3> shown = stage.update(s, 0.0f);
+  const vec3 planted = shown[ball];
+  const Leg rest = leg(stage.animated(), kCanonLeftUpLeg);
+  float played_moved = 0.0f, shown_moved = 0.0f;
+  for (int f = 1; f <= 10; ++f) {
+    // 2 deg a frame about the root (60 deg/s), as LookaheadAvatar::steer rotates a segment.
+    const vec2 root = playback_root(lib, s).pos_m;
+    s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.035f), s.segment_start.heading_rad + 0.035f};
+    s.frame = f % lib.graph.segments[idle].num_frames();
+    shown = stage.update(s, 1.0f / 30.0f);
+    played_moved = std::max(played_moved, glm::length(stage.animated()[ball] - planted));
+    shown_moved = std::max(shown_moved, glm::length(shown[ball] - planted));
+    const Leg now = leg(shown, kCanonLeftUpLeg);
+    EXPECT_NEAR(now.upper, rest.upper, 1e-3f) << "frame " << f;
+    EXPECT_NEAR(now.lower, rest.lower, 1e-3f) << "frame " << f;
+  }
+  EXPECT_GT(played_moved, 0.03f) << "the played foot swings round with the body";
+  EXPECT_LT(shown_moved, 0.002f) << "the shown one stays planted";
+}
+
+// Turned far enough over a planted foot, the body steps it to where the clip has it: the foot is
+// shown lifted (not planted) on the way, and ends where the clip has it.
+TEST(PoseStage, TheBodyTurnedFarOverAPlantedFootStepsIt) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PoseStage stage(lib);
+  PlaybackState s{idle, 0, Placement{}, -1};
+  stage.update(s, 0.0f);
+  bool lifted = false;
+  for (int f = 1; f <= 60; ++f) {
+    if (f <= 15) {  // 6 deg a frame for half a second: 90 deg
+      const vec2 root = playback_root(lib, s).pos_m;
+      s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.105f), s.segment_start.heading_rad + 0.105f};
+    }
+    s.frame = f % lib.graph.segments[idle].num_frames();
+    stage.update(s, 1.0f / 30.0f);
+    lifted |= (stage.contact() & (kLeftHeel | kLeftBall)) == 0 || (stage.contact() & (kRightHeel | kRightBall)) == 0;
+  }
+  EXPECT_TRUE(lifted) << "a foot should have stepped";
+  EXPECT_LT(test::max_distance(std::vector<vec3>(stage.shown().begin(), stage.shown().end()),
+                               std::vector<vec3>(stage.animated().begin(), stage.animated().end())),
+            0.01f)
+      << "settled: shown where the clip has it";
+}
+
+// A played pose that jumps (a fallback, a correction) is shown continuing from where it was,
+// the jump decaying over inertialize_s.
+TEST(PoseStage, AJumpIsInertializedNotShown) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PoseStageConfig config;
+  config.foot_locking = false;  // the offsets alone
+  PoseStage stage(lib, config);
+  PlaybackState s{idle, 0, Placement{}, -1};
+  const std::span<const vec3> first = stage.update(s, 0.0f);
+  const std::vector<vec3> before(first.begin(), first.end());
+  s.segment_start = Placement{vec2(1.0f, 0.0f), 0.0f};  // a metre sideways in one frame
+  s.frame = 1;
+  std::span<const vec3> shown = stage.update(s, 1.0f / 30.0f);
+  EXPECT_EQ(stage.discontinuities(), 1);
+  EXPECT_LT(glm::length(shown[0] - before[0]), 0.05f) << "no jump on the first frame";
+  float previous_x = shown[0].x;
+  for (int f = 2; f < 12; ++f) {
+    s.frame = f;
+    shown = stage.update(s, 1.0f / 30.0f);
+    EXPECT_GE(shown[0].x, previous_x - 1e-4f) << "moving over, never back";
+    EXPECT_LT(shown[0].x - previous_x, 0.25f) << "in steps, not a jump";
+    previous_x = shown[0].x;
+  }
+  EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
+}
+
+// The steering's turn (a walking segment's start rotated 18 deg in one frame, as 540 deg/s
+// does) is shown eased: less than that on the frame, all of it a few frames later.
+TEST(PoseStage, TheSteeringTurnIsEased) {
+  const MotionLibrary& lib = library();
+  const int walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(walk, 0);
+  PoseStageConfig config;
+  config.foot_locking = false;
+  PoseStage stage(lib, config);
+  PlaybackState s{walk, 0, Placement{}, -1};
+  stage.update(s, 0.0f);
+  const auto heading_of = [](std::span<const vec3> p) {  // hips' left-right axis, as a heading
+    const vec3 across = p[kCanonLeftUpLeg] - p[kCanonRightUpLeg];
+    return std::atan2(-across.z, across.x);
+  };
+  s.frame = 1;
+  const vec2 root = playback_root(lib, s).pos_m;
+  s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.314f), 0.314f};
+  std::span<const vec3> shown = stage.update(s, 1.0f / 30.0f);
+  const float played_turn = wrap_angle(heading_of(stage.animated()) - heading_of(shown));
+  EXPECT_GT(std::abs(played_turn), 0.1f) << "the shown body lags the played one on the turn's frame";
+  for (int f = 2; f < 12; ++f) {
+    s.frame = f;
+    shown = stage.update(s, 1.0f / 30.0f);
+  }
+  EXPECT_LT(std::abs(wrap_angle(heading_of(stage.animated()) - heading_of(shown))), 0.02f) << "caught up";
+}
+
+}  // namespace
+}  // namespace foresight
