@@ -42,8 +42,9 @@ struct ServerConfig {
   int resort_interval_ticks = 4;
   int tree_max_depth = 8;
   /// Steering mode of the avatars' look-ahead (MotionTreeConfig::steer_rad_per_s, in deg/s; 0:
-  /// off, the paper's controller). The lab's responsive controller runs at 540 (docs/LAB.md).
-  float steer_deg_per_s = 0.0f;
+  /// off, the paper's controller). On by default at the lab's responsive controller's 540
+  /// (docs/LAB.md): clients show it through the pose stage, which keeps feet planted.
+  float steer_deg_per_s = 540.0f;
   /// Per session: more packets than this per second are dropped (counted); input commands come
   /// at most at the client's frame rate.
   int max_packets_per_s = 120;

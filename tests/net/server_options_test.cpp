@@ -82,7 +82,7 @@ TEST(ServerOptions, TheWrittenConfigReadsBackToTheSameConfiguration) {
   EXPECT_EQ(b.scene, "arena");
   EXPECT_EQ(b.fighters, 3);
   EXPECT_FLOAT_EQ(b.steer_deg_per_s, 540.0f);
-  EXPECT_FLOAT_EQ(ServerConfig{}.steer_deg_per_s, 0.0f) << "steering mode is opt-in";
+  EXPECT_FLOAT_EQ(ServerConfig{}.steer_deg_per_s, 540.0f) << "steering mode is on by default (issue 18)";
   EXPECT_EQ(b.port, a.port);
   EXPECT_EQ(b.max_packets_per_s, a.max_packets_per_s);
   EXPECT_EQ(b.tree_max_nodes, a.tree_max_nodes);
