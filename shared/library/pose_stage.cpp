@@ -149,13 +149,16 @@ void PoseStage::reach(int foot, vec3 offset) {
   vec3 target = a + offset;
   vec3 to = target - h;
   float d = glm::length(to);
-  const float longest = 0.999f * (upper + lower), shortest = std::abs(upper - lower) + 1e-3f;
+  const float longest = 0.995f * (upper + lower), shortest = std::abs(upper - lower) + 1e-3f;
   if (d < 1e-4f) return;
   const vec3 dir = to / d;
   d = std::clamp(d, shortest, longest);
   target = h + dir * d;
-  // The bend: the animated knee's offset from the hip-ankle line, kept on its side.
-  vec3 bend = (k - h) - dir * glm::dot(k - h, dir);
+  // The bend: the animated knee's offset from its own hip-ankle line (the plane the animation
+  // bends the leg in), made square to the new line; the knee stays on that side.
+  const vec3 axis = glm::normalize(a - h);
+  vec3 bend = (k - h) - axis * glm::dot(k - h, axis);
+  bend -= dir * glm::dot(bend, dir);
   if (glm::dot(bend, bend) < 1e-8f) bend = vec3(0.0f, 0.0f, 1.0f) - dir * dir.z;
   bend = glm::normalize(bend);
   const float along = (upper * upper - lower * lower + d * d) / (2.0f * d);

@@ -34,10 +34,10 @@ struct PoseStageConfig {
   bool foot_locking = true;
   bool inertialization = true;
   bool turn_easing = true;
-  float turn_stiffness = 30.0f;  ///< 1/s of the spring (lag at 540 deg/s: 2 x rate / stiffness, 18 deg).
+  float turn_stiffness = 30.0f;  ///< 1/s of the spring (lag while turning at 540 deg/s: 2 x rate / stiffness, 36 deg).
   float inertialize_s = 0.2f;
-  float release_s = 0.2f;
-  float max_lock_offset_m = 0.15f;
+  float release_s = 0.3f;
+  float max_lock_offset_m = 0.10f;
   float step_height_m = 0.05f;  ///< Apex of a step taken when the body turned too far over a planted foot.
 };
 
