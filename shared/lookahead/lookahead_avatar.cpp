@@ -219,9 +219,15 @@ bool LookaheadAvatar::turn_on_spot(const ChildVeto* veto) {
   const vec2 command = steering_command();
   if (glm::dot(command, command) < 1e-8f || !is_standing_loop(playback_.segment)) return false;
   const vec2 dir = glm::normalize(command);
-  if (!facing_searched_ || glm::dot(dir, facing_for_) < kSameFacingCos) {
+  // The scene does not move: the search holds while the avatar stands where it was made (a stand
+  // held for seconds, say waiting for another avatar to pass, searches once) and the key is the same.
+  const vec2 here = root().pos_m;
+  if (!facing_searched_ || glm::dot(dir, facing_for_) < kSameFacingCos || glm::length(here - facing_at_) > 0.02f ||
+      facing_segment_ != playback_.segment) {
     facing_searched_ = true;
     facing_for_ = dir;
+    facing_at_ = here;
+    facing_segment_ = playback_.segment;
     has_facing_ = false;
     const Placement now = root();
     const float want = std::atan2(dir.x, dir.y);  // heading convention: forward = (sin h, cos h)
@@ -347,7 +353,6 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
       child >= 0 && (tree_.config().check_collisions ||
                      segment_feasible(world_, library_.segment_shapes[tree_.node(child).segment],
                                       tree_.node(child).start));
-  facing_searched_ = false;
   if (child_free) {
     result.transition = tree_.advance_root(child);
     playback_take(library_, playback_, result.transition);

@@ -116,10 +116,12 @@ class LookaheadAvatar {
   vec2 escape_command_{0.0f};  ///< The player's direction when the escape began.
   float recover_s_ = -1;       ///< < 0: not recovering.
   int recoveries_ = 0;
-  // turn_on_spot(): the heading searched for this stand and command.
+  // turn_on_spot(): the heading searched for this standing loop, place and command.
   bool facing_searched_ = false;
   bool has_facing_ = false;
   vec2 facing_for_{0.0f};
+  vec2 facing_at_{0.0f};
+  int facing_segment_ = -1;
   float facing_ = 0;
   std::vector<uint8_t> standing_loop_;  ///< Per graph segment: a held pose that goes nowhere.
   std::vector<uint8_t> ends_standing_;  ///< Per graph segment: a standing loop may follow it.

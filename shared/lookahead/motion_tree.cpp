@@ -14,6 +14,7 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
   order_.resize(static_cast<size_t>(config_.max_nodes));
   queue_.reserve(static_cast<size_t>(config_.max_nodes));
   visit_stack_.reserve(static_cast<size_t>(config_.max_nodes));
+  ranked_.reserve(64);  // a segment's successors; grows once if a graph has more
   if (!library_.clips.empty()) segment_fps_ = library_.clips.front().fps;
   reset(0, Placement{});
 }
@@ -224,14 +225,12 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
 int MotionTree::select_child(const ChildVeto* veto) {
   update_priorities_if_stale();
   const auto& w = config_.selection_weights;
-  int best = -1;
-  float best_sum = -1.0f;
-  uint32_t best_order = 0;
+  // Branch sums (4.3): every node of a child's branch, weighted by its depth below the root. The
+  // veto (a reservation check of every frame, on the server) is then asked best first, so only
+  // the children better than the one taken are checked.
+  ranked_.clear();
   for (int c = nodes_[static_cast<size_t>(root_)].first_child; c >= 0;
        c = nodes_[static_cast<size_t>(c)].next_sibling) {
-    if (veto != nullptr && veto->blocks(nodes_[static_cast<size_t>(c)].segment, nodes_[static_cast<size_t>(c)].start))
-      continue;
-    // Branch sum (4.3): every node of the branch, weighted by its depth below the root.
     float sum = 0.0f;
     visit_stack_.clear();
     visit_stack_.push_back(c);
@@ -242,14 +241,16 @@ int MotionTree::select_child(const ChildVeto* veto) {
       for (int k = n.first_child; k >= 0; k = nodes_[static_cast<size_t>(k)].next_sibling)
         visit_stack_.push_back(k);
     }
-    const uint32_t order = order_[static_cast<size_t>(c)];
-    if (sum > best_sum || (sum == best_sum && order < best_order)) {
-      best = c;
-      best_sum = sum;
-      best_order = order;
-    }
+    ranked_.push_back({sum, order_[static_cast<size_t>(c)], c});
   }
-  return best;
+  std::sort(ranked_.begin(), ranked_.end(), [](const RankedChild& a, const RankedChild& b) {
+    return a.sum > b.sum || (a.sum == b.sum && a.order < b.order);
+  });
+  for (const RankedChild& r : ranked_) {
+    const MotionTreeNode& n = nodes_[static_cast<size_t>(r.node)];
+    if (veto == nullptr || !veto->blocks(n.segment, n.start)) return r.node;
+  }
+  return -1;
 }
 
 int MotionTree::advance_root(int child) {

@@ -209,6 +209,12 @@ class MotionTree {
   std::vector<uint32_t> order_;  // per node: creation order
   std::vector<QueueEntry> queue_;
   mutable std::vector<int> visit_stack_;
+  struct RankedChild {
+    float sum;
+    uint32_t order;
+    int node;
+  };
+  std::vector<RankedChild> ranked_;  ///< select_child()'s scratch (capacity kept).
   int free_head_ = -1;
   int num_nodes_ = 0;
   int root_ = -1;
