@@ -5,6 +5,7 @@
 
 #include "player.hpp"
 
+#include "protocol/player_name.hpp"
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
 #include "protocol/scene_transfer.hpp"
@@ -483,7 +484,7 @@ void Server::on_connect_response(const protocol::Endpoint& from, const wire::Con
       return;
     }
   if (!join_queue_.empty()) ++counters_.joins_deferred;
-  PendingJoin join{from, key, m.client_name() ? m.client_name()->str().substr(0, 64) : std::string(), {}};
+  PendingJoin join{from, key, m.client_name() ? protocol::printable_name(m.client_name()->string_view()) : std::string(), {}};
   std::copy(client_key->begin(), client_key->end(), join.client_key.begin());
   join_queue_.push_back(std::move(join));
 }

@@ -2,6 +2,8 @@
 
 #include "library/motion_source_cli.hpp"
 
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace foresight::server {
@@ -106,6 +108,24 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
       ->capture_default_str();
   app.add_option("--admin-token", c.admin_token, "Admin token (empty: a random one, printed at start)");
   add_motion_source_options(app, c.motions);
+  // NaN passes every range check (every comparison with it is false) and infinity passes the
+  // open-ended ones: every number must be finite, on the command line and in the TOML file.
+  const CLI::Validator finite(
+      [](std::string& text) {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        return end != text.c_str() && *end == '\0' && !std::isfinite(v) ? std::string("must be a finite number")
+                                                                      : std::string();
+      },
+      "FINITE");
+  // An unset variable (`--port "$PORT"`) reads as 0 ("any free port"): an empty number is an error.
+  const CLI::Validator given([](std::string& text) { return text.empty() ? std::string("must not be empty") : std::string(); },
+                             "GIVEN");
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type.find("FLOAT") != std::string::npos) option->check(finite);
+    if (type.find("FLOAT") != std::string::npos || type.find("INT") != std::string::npos) option->check(given);
+  }
 }
 
 std::string server_config_text(const CLI::App& app) {

@@ -16,7 +16,8 @@ inline void add_motion_source_options(CLI::App& app, MotionSource& source) {
                  "Folder of BVH clips to use instead of the built-in default library")
       ->check(CLI::ExistingDirectory);
   app.add_option("--threshold", source.graph.threshold_rms_m,
-                 "Automatic graph: max RMS point distance of a transition, metres");
+                 "Automatic graph: max RMS point distance of a transition, metres")
+      ->check(CLI::Range(0.001, 10.0));
   static const std::map<std::string, LengthUnit> units{
       {"auto", LengthUnit::kAuto},         {"m", LengthUnit::kMetres},
       {"cm", LengthUnit::kCentimetres},    {"mm", LengthUnit::kMillimetres},

@@ -79,8 +79,8 @@ class RawClient {
   /// Runs the handshake against `server` (ticked at `now`, advancing 1 ms per tick); returns the
   /// Accept's session and avatar, or the refusal's bytes via `refuse`.
   bool connect(server::Server& s, server::Clock::time_point& now, uint64_t library_hash,
-               std::vector<uint8_t>* refuse = nullptr) {
-    send(protocol::write_connect_request(writer_, library_hash, "test"));
+               std::vector<uint8_t>* refuse = nullptr, std::string_view name = "test") {
+    send(protocol::write_connect_request(writer_, library_hash, name));
     std::optional<std::vector<uint8_t>> challenge;
     for (int i = 0; i < 50 && !challenge; ++i) {
       s.run_tick(now += std::chrono::milliseconds(1));
@@ -89,7 +89,7 @@ class RawClient {
     if (!challenge) return false;
     protocol::DropReason reason;
     const auto* cookie = protocol::packet_read(*challenge, reason)->message_as_Challenge()->cookie();
-    send(protocol::write_connect_response(writer_, library_hash, {cookie->data(), cookie->size()}, "test",
+    send(protocol::write_connect_response(writer_, library_hash, {cookie->data(), cookie->size()}, name,
                                           keys_.public_key));
     for (int i = 0; i < 50; ++i) {
       s.run_tick(now += std::chrono::milliseconds(1));

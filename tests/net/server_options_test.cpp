@@ -55,6 +55,23 @@ TEST(ServerOptions, TheFileSetsOptionsAndTheCommandLineWins) {
   EXPECT_EQ(c.snapshot_hz, ServerConfig{}.snapshot_hz);  // untouched: the default
 }
 
+// NaN passes every range check and infinity the open-ended ones (issue 19): a server started with
+// --budget-ms nan ran avatars that never moved while /readyz said ready. Every number must be
+// finite, on the command line and in the file; an empty number (an unset variable) is an error.
+TEST(ServerOptions, EveryNumberIsFiniteAndGiven) {
+  for (const char* option : {"--budget-ms", "--timeout-s", "--steer-deg-per-s", "--margin-ms", "--status-every-s",
+                             "--fighter-cooldown-s", "--interest-radius-m", "--threshold", "--bvh-scale"})
+    for (const char* value : {"nan", "NaN", "inf", "-inf"}) {
+      const auto r = parse({option, value});
+      EXPECT_NE(r->error.find(option), std::string::npos) << option << " " << value << ": " << r->error;
+    }
+  EXPECT_NE(parse({"--config", write_file("nan.toml", "budget-ms = nan\n").string()})->error.find("finite"),
+            std::string::npos);
+  EXPECT_NE(parse({"--port", ""})->error.find("must not be empty"), std::string::npos);
+  EXPECT_FALSE(parse({"--threshold", "-5"})->error.empty());
+  EXPECT_TRUE(parse({"--budget-ms", "2.5", "--timeout-s", "30", "--threshold", "0.05"})->error.empty());
+}
+
 TEST(ServerOptions, MistakesInTheFileAreReported) {
   EXPECT_NE(parse({"--config", write_file("b.toml", "tick-hz = 30\nbugdet-ms = 4\n").string()})->error.find("bugdet"),
             std::string::npos);

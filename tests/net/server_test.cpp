@@ -45,6 +45,21 @@ TEST(Server, HandshakeGivesASessionAndAnAvatarInSnapshots) {
   EXPECT_TRUE(avatars[0].flags() & protocol::kAvatarYours);
 }
 
+// A name is untrusted text (issue 19): one holding a newline must not forge a line of the
+// server's log.
+TEST(Server, APlayersNameCannotForgeALogLine) {
+  Running r;
+  RawClient c(r.server.port());
+  testing::internal::CaptureStderr();
+  const bool connected = c.connect(r.server, r.now, r.server.library().content_hash, nullptr,
+                                   "mallory\nforesight-server: player 7 left (0 players)");
+  r.ticks(2);
+  const std::string log = testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(connected);
+  EXPECT_NE(log.find("mallory?foresight-server: player 7 left"), std::string::npos) << log;
+  EXPECT_EQ(log.find("\nforesight-server: player 7 left"), std::string::npos) << log;
+}
+
 TEST(Server, InputMovesTheAvatarAndSnapshotsFollowIt) {
   Running r("arena");  // open ground: the command can be followed straight away
   RawClient c(r.server.port());
