@@ -88,9 +88,17 @@ bool AdminEndpoint::start(const std::string& bind_address, int port, std::string
   http.Get("/", [authorised](const httplib::Request& req, httplib::Response& res) {
     if (authorised(req, res)) res.set_content(admin_page_html(), "text/html; charset=utf-8");
   });
+  // cpp-httplib sets SO_REUSEPORT, with which a second server binds the same port without a
+  // word and the kernel splits the requests between the two: only SO_REUSEADDR (a restart may
+  // take a port still in TIME_WAIT), so a port another process listens on is an error.
+  http.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   port_ = port == 0 ? http.bind_to_any_port(bind_address) : (http.bind_to_port(bind_address, port) ? port : -1);
   if (port_ < 0) {
-    error = "admin endpoint: cannot bind " + bind_address + ":" + std::to_string(port) + " (in use?)";
+    error = "admin endpoint: cannot bind " + bind_address + ":" + std::to_string(port) +
+            " (not an address of this machine, or the port is taken by another process)";
     return false;
   }
   thread_ = std::thread([this] { impl_->http.listen_after_bind(); });

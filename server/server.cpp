@@ -101,9 +101,11 @@ bool Server::start(const ServerConfig& config, std::string& error) {
     admin_ = std::make_unique<AdminEndpoint>(admin_state_, admin_queue_, admin_token_);
     std::string admin_error;
     if (!admin_->start(config_.admin_bind, config_.admin_port, admin_error)) {
-      // The game runs without it (another server may hold the port); the operator is told.
-      std::fprintf(stderr, "foresight-server: %s; running without it\n", admin_error.c_str());
+      // An endpoint the operator asked for and did not get is an error at start: an orchestrator
+      // probing /healthz on a port another server holds would be told about the wrong server.
+      error = admin_error + " (--admin-port -1: no admin endpoint)";
       admin_.reset();
+      return false;
     } else {
       std::fprintf(stderr, "foresight-server: admin endpoint http://%s:%d/?token=%s (/metrics, /status, /command)\n",
                    config_.admin_bind.c_str(), admin_->port(), config_.admin_token.empty() ? admin_token_.c_str() : "<yours>");

@@ -90,7 +90,7 @@ inline void run_client_screenshot(const ClientRun& run, Image& img) {
   ASSERT_GT(port, 0);
   const std::string server_address = "127.0.0.1:" + std::to_string(port);
   std::vector<std::string> server_args = {bin("foresight-server"), "--scene", run.scene, "--port",
-                                          std::to_string(port), "--seconds", "120"};
+                                          std::to_string(port), "--seconds", "120", "--admin-port", "-1"};
   server_args.insert(server_args.end(), run.server_args.begin(), run.server_args.end());
   const pid_t server = spawn(server_args, (run.dir / (run.name + "-server.log")).string());
   ASSERT_GT(server, 0);

@@ -57,6 +57,28 @@ double sample(const std::string& text, const std::string& name) {
   return at == std::string::npos ? -1.0 : std::stod(text.substr(at + name.size() + 2));
 }
 
+// A second server on the same admin port used to start without a word (cpp-httplib's
+// SO_REUSEPORT: both listened and the kernel split the requests), and a bad --admin-bind was
+// reported as "(in use?)" while the server carried on (issue 19). Both are errors at start now.
+TEST(AdminStart, ATakenPortOrABadAddressIsAnErrorAtStart) {
+  AdminRun first;
+  ASSERT_GT(first.server.admin_port(), 0);
+  server::ServerConfig c = test::test_server_config("arena");
+  c.admin_port = first.server.admin_port();
+  server::Server second;
+  std::string error;
+  EXPECT_FALSE(second.start(c, error));
+  EXPECT_NE(error.find("cannot bind"), std::string::npos) << error;
+  EXPECT_EQ(first.get("/healthz")->status, 200) << "the first server still answers";
+
+  c.admin_port = 0;
+  c.admin_bind = "999.1.1.1";
+  server::Server third;
+  error.clear();
+  EXPECT_FALSE(third.start(c, error));
+  EXPECT_NE(error.find("999.1.1.1"), std::string::npos) << error;
+}
+
 TEST(Admin, EveryRouteButTheHealthChecksWantsTheToken) {
   AdminRun r;
   r.ticks(3);
