@@ -7,6 +7,8 @@
 #include "machine_info.hpp"
 #include "world/data_paths.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <string>
 
@@ -15,16 +17,12 @@ namespace {
 
 constexpr float kSteerRadPerS = 9.424778f;  // 540 deg/s, the lab's responsive controller
 
-std::string result_json(const lab::MotionQualityResult& r) {
-  char buf[1024];
-  std::snprintf(buf, sizeof buf,
-                "\"foot_skate_cm_per_s_p50\":%.3f,\"foot_skate_cm_per_s_p95\":%.3f,\"foot_skate_cm_per_s_max\":%.3f,"
-                "\"ground_error_cm_p95\":%.3f,\"pops_per_min\":%.3f,\"limit_violations\":%lld,"
-                "\"response_ms_p50\":%.1f,\"response_ms_p95\":%.1f,\"collisions\":%lld,\"goals_reached_share\":%.3f",
-                r.foot_skate_cm_per_s_p50, r.foot_skate_cm_per_s_p95, r.foot_skate_cm_per_s_max,
-                r.ground_error_cm_p95, r.pops_per_min, static_cast<long long>(r.limit_violations),
-                r.response_ms_p50, r.response_ms_p95, static_cast<long long>(r.collisions), r.goals_reached_share);
-  return buf;
+nlohmann::json result_json(const lab::MotionQualityResult& r) {
+  return {{"foot_skate_cm_per_s_p50", r.foot_skate_cm_per_s_p50}, {"foot_skate_cm_per_s_p95", r.foot_skate_cm_per_s_p95},
+          {"foot_skate_cm_per_s_max", r.foot_skate_cm_per_s_max}, {"ground_error_cm_p95", r.ground_error_cm_p95},
+          {"pops_per_min", r.pops_per_min},                       {"limit_violations", r.limit_violations},
+          {"response_ms_p50", r.response_ms_p50},                 {"response_ms_p95", r.response_ms_p95},
+          {"collisions", r.collisions},                           {"goals_reached_share", r.goals_reached_share}};
 }
 
 }  // namespace
@@ -49,7 +47,7 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
   }
   std::printf("machine: %s\n", machine_description().c_str());
   std::printf("scene %s, library %s, %d closed-loop player seeds per controller, pop threshold %.1f mm/frame^2\n",
-              scene.name.c_str(), lib.name.c_str(), o.seeds, 1000.0 * lab::library_pop_threshold(lib));
+              scene.name.c_str(), lib.name.c_str(), o.seeds, 1000.0 * results.front().pop_threshold_m);
   std::printf("  %-40s %7s %22s %9s %8s %7s %12s %7s %9s\n", "controller", "goals", "skate cm/s p50/p95/max",
               "ground95", "pops/min", "limits", "resp p50/p95", "collide", "inertial.");
   for (const lab::MotionQualityResult& r : results)
@@ -64,14 +62,18 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
                   static_cast<long long>(r.shown_collisions), static_cast<long long>(r.played_collisions));
   if (o.json) {
     // Top level: the default controller (steering with the pose stage, the last row); every row
-    // under "controllers".
-    std::string rows;
-    for (const lab::MotionQualityResult& r : results)
-      rows += std::string(rows.empty() ? "" : ",") + "{\"name\":\"" + r.controller + "\"," + result_json(r) + "}";
-    std::printf("{\"bench\":\"motion-quality\",\"scene\":\"%s\",\"library\":\"%s\",\"seeds\":%d,\"controller\":\"%s\",%s,"
-                "\"controllers\":[%s],%s}\n",
-                scene.name.c_str(), lib.name.c_str(), o.seeds, results.back().controller.c_str(),
-                result_json(results.back()).c_str(), rows.c_str(), machine_json_fields().c_str());
+    // under "controllers"; then where it ran.
+    nlohmann::json j = {{"bench", "motion-quality"}, {"scene", scene.name}, {"library", lib.name},
+                        {"seeds", o.seeds},          {"controller", results.back().controller}};
+    j.update(result_json(results.back()));
+    for (const lab::MotionQualityResult& r : results) {
+      nlohmann::json row = result_json(r);
+      row["name"] = r.controller;
+      j["controllers"].push_back(row);
+    }
+    std::string text = j.dump();
+    text.pop_back();  // reopen the object for the machine fields
+    std::printf("%s,%s}\n", text.c_str(), machine_json_fields().c_str());
   }
   return 0;
 }

@@ -158,6 +158,7 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     Accumulator acc;
     acc.r.controller = c.name;
     acc.r.pose_stage = c.pose_stage;
+    acc.r.pop_threshold_m = pop_threshold;
     for (int seed = 1; seed <= options.seeds; ++seed)
       measure_run(library, world, scene, c, options, static_cast<uint64_t>(seed), pop_threshold, acc);
     MotionQualityResult& r = acc.r;

@@ -61,6 +61,7 @@ struct MotionQualityResult {
   int64_t shown_collisions = 0;      ///< Frames whose shown pose (after the stage) does (shown_joints_collide).
   int64_t collisions = 0;            ///< The larger of the two.
   double goals_reached_share = 0.0;
+  float pop_threshold_m = 0.0f;      ///< library_pop_threshold: the same for every controller.
 };
 
 /// The per-frame largest joint acceleration (m per frame^2) that 99.9 % of the library's clip

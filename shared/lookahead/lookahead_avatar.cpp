@@ -194,11 +194,15 @@ float LookaheadAvatar::frame_turn(float rad_per_s) const {
   return rad_per_s / (fps > 0.0f ? fps : 30.0f);
 }
 
-bool LookaheadAvatar::rotate_playing(float turn, const ChildVeto* veto, bool keep_way_on) {
-  // Rotate the segment's placement about where the root stands now.
+// The playing segment's start turned by `turn` about where the root stands now.
+Placement LookaheadAvatar::turned_start(float turn) const {
   const Placement now = root();
-  const Placement rotated{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
-                          playback_.segment_start.heading_rad + turn};
+  return {now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
+          playback_.segment_start.heading_rad + turn};
+}
+
+bool LookaheadAvatar::rotate_playing(float turn, const ChildVeto* veto, bool keep_way_on) {
+  const Placement rotated = turned_start(turn);
   // The veto sees the whole rotated segment (conservative: its played frames too).
   if (!segment_feasible(world_, library_.segment_shapes[playback_.segment], rotated) ||
       (veto != nullptr && veto->blocks(playback_.segment, rotated)) ||
@@ -233,9 +237,7 @@ bool LookaheadAvatar::turn_on_spot(const ChildVeto* veto) {
     const float want = std::atan2(dir.x, dir.y);  // heading convention: forward = (sin h, cos h)
     for (float off = 0.0f; off <= kFacingCone_rad && !has_facing_; off += kFacingStep_rad)
       for (const float h : {want + off, want - off}) {
-        const float turn = wrap_angle(h - now.heading_rad);
-        const Placement at{now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
-                           playback_.segment_start.heading_rad + turn};
+        const Placement at = turned_start(wrap_angle(h - now.heading_rad));
         if (segment_feasible(world_, library_.segment_shapes[playback_.segment], at) &&
             has_way_on(playback_.segment, at, kWayOnDepth)) {
           facing_ = h;

@@ -81,6 +81,7 @@ class LookaheadAvatar {
   float intended_heading() const;
   bool turn_on_spot(const ChildVeto* veto);
   bool rotate_playing(float turn, const ChildVeto* veto, bool keep_way_on);
+  Placement turned_start(float turn) const;
   float frame_turn(float rad_per_s) const;
   bool is_standing_loop(int segment) const { return standing_loop_[static_cast<size_t>(segment)] != 0; }
   bool has_way_on(int segment, const Placement& start, int depth) const;

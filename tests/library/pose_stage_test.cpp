@@ -5,6 +5,9 @@
 #include "library/library_source.hpp"
 #include "library/pose_stage.hpp"
 #include "library_checks.hpp"
+#include "anim/bvh.hpp"
+#include "support/bvh_variants.hpp"
+#include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -158,6 +161,60 @@ TEST(PoseStage, TheSteeringTurnIsEased) {
     shown = stage.update(s, 1.0f / 30.0f);
   }
   EXPECT_LT(std::abs(wrap_angle(heading_of(stage.animated()) - heading_of(shown))), 0.02f) << "caught up";
+}
+
+// Not only our own clips: a captured walk, rescaled to inches, under a dummy root and with its
+// rotation channels reordered, imported with no hint. Its feet are found planted, and while the
+// root steers (2 deg a frame) the shown planted parts stay put where the played ones slide.
+TEST(PoseStage, OnACaptureOfAnotherUnitRootAndChannelOrderPlantedFeetStayPut) {
+  FORESIGHT_REQUIRE_MOCAP();
+  BvhDocument take;
+  std::string error;
+  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", take, error)) << error;
+  test::scale_document(take, 1.0f / 2.54f);
+  test::insert_parent(take, 0, "Reference", 0.0f);
+  test::reorder_rotations(take, "XYZ");
+  const auto dir = test::scratch_dir();
+  ASSERT_TRUE(bvh_save(dir / "walk_variant.bvh", take, error)) << error;
+  MotionSource source;
+  source.motions_dir = dir;
+  MotionLibrary lib;
+  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  ASSERT_EQ(lib.foot_contact.size(), lib.root_track.size());
+  int walking = -1;
+  for (int s = 0; s < lib.graph.num_segments() && walking < 0; ++s)
+    if ((lib.graph.segments[s].tags & kTagLocomotion) && lib.segment_motion[static_cast<size_t>(s)].end.pos_m.y > 0.3f)
+      walking = s;
+  ASSERT_GE(walking, 0);
+  PoseStage stage(lib);
+  PlaybackState st{walking, 0, Placement{}, -1};
+  const std::span<const vec3> first = stage.update(st, 0.0f);
+  std::vector<vec3> before(first.begin(), first.end());
+  std::vector<vec3> played_before(stage.animated().begin(), stage.animated().end());
+  uint8_t contact_before = stage.contact();
+  int planted_pairs = 0;
+  float shown_sum = 0.0f, played_sum = 0.0f;
+  for (int f = 1; f < lib.graph.segments[walking].num_frames(); ++f) {
+    const vec2 root = playback_root(lib, st).pos_m;
+    st.segment_start = Placement{root + rotate_ground(st.segment_start.pos_m - root, 0.035f), st.segment_start.heading_rad + 0.035f};
+    st.frame = f;
+    const std::span<const vec3> shown = stage.update(st, 1.0f / 30.0f);
+    for (int foot = 0; foot < 2; ++foot) {
+      // The part held: the ball when it is planted, else the heel (as the stage and the bench).
+      const uint8_t bit = (stage.contact() & foot_ball_bit(foot)) ? foot_ball_bit(foot) : foot_heel_bit(foot);
+      if (!(contact_before & bit) || !(stage.contact() & bit)) continue;
+      const auto j = static_cast<size_t>(bit == foot_ball_bit(foot) ? foot_ball_joint(foot) : foot_heel_joint(foot));
+      ++planted_pairs;
+      shown_sum += glm::length(shown[j] - before[j]);
+      played_sum += glm::length(stage.animated()[j] - played_before[j]);
+    }
+    before.assign(shown.begin(), shown.end());
+    played_before.assign(stage.animated().begin(), stage.animated().end());
+    contact_before = stage.contact();
+  }
+  ASSERT_GT(planted_pairs, 5) << "the capture's feet should be found planted";
+  EXPECT_GT(played_sum / static_cast<float>(planted_pairs), 0.002f) << "played feet slide under steering";
+  EXPECT_LT(shown_sum, 0.2f * played_sum) << "shown planted parts stay (nearly) put";
 }
 
 }  // namespace
