@@ -337,6 +337,7 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
     if (!fighter) {
       const float flash = strikes_.target_flash(a.id, t);
       PoseStage& stage = poses_.try_emplace(a.id, library_).first->second;
+      stage.set_ground(&scene_.terrain);
       renderer_.add_skeleton(library_.skeleton.parents, stage.update(a.state, dt, a.frame_alpha),
                              glm::mix(colour, kFlashColour, flash));
     }

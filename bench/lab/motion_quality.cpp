@@ -66,8 +66,9 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
   ReplayRun run(lib, world, start, goal.pos_m, goal.radius_m, rc);
   if (!run.ok()) return;
   PoseStageConfig sc;
-  sc.foot_locking = sc.inertialization = sc.turn_easing = c.pose_stage;
+  sc.foot_locking = sc.inertialization = sc.turn_easing = sc.orientation_warping = sc.ground_adaptation = c.pose_stage;
   PoseStage stage(lib, sc);
+  stage.set_ground(&world.terrain);
   const float dt = static_cast<float>(rc.frame_interval_s);
   const size_t n = static_cast<size_t>(lib.num_joints());
   std::vector<vec3> before(n), now(n), after(n), animated(n);
@@ -169,6 +170,7 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
                                     ? 0.0
                                     : *std::max_element(acc.skate_cm_per_s.begin(), acc.skate_cm_per_s.end());
     r.ground_error_cm_p95 = percentile(acc.ground_cm, 95);
+    r.ground_error_cm_max = acc.ground_cm.empty() ? 0.0 : *std::max_element(acc.ground_cm.begin(), acc.ground_cm.end());
     r.pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.pops) / r.minutes : 0.0;
     r.response_ms_p50 = percentile(acc.response_ms, 50);
     r.response_ms_p95 = percentile(acc.response_ms, 95);

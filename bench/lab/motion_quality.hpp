@@ -51,6 +51,7 @@ struct MotionQualityResult {
   double foot_skate_cm_per_s_p95 = 0.0;
   double foot_skate_cm_per_s_max = 0.0;
   double ground_error_cm_p95 = 0.0;
+  double ground_error_cm_max = 0.0;
   int64_t pops = 0;
   double pops_per_min = 0.0;
   int64_t limit_violations = 0;

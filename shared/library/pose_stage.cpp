@@ -4,6 +4,7 @@
 #include "anim/fk.hpp"
 #include "library/foot_contact.hpp"
 #include "math/types.hpp"
+#include "world/terrain.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,23 @@ float decay(float left_s, float total_s) {
   if (total_s <= 0.0f || left_s <= 0.0f) return 0.0f;
   const float x = std::clamp(left_s / total_s, 0.0f, 1.0f);
   return x * x * (3.0f - 2.0f * x);
+}
+
+// One exact step of a critically damped spring (stiffness k, 1/s) moving x towards target:
+// stable at any dt, no overshoot, the rate continuous.
+void spring_towards(float& x, float& v, float target, float k, float dt) {
+  const float e = std::exp(-k * dt), d = x - target;
+  x = target + (d + (v + k * d) * dt) * e;
+  v = (v - k * (v + k * d) * dt) * e;
+}
+
+// Orientation warping's share of the turn lag per canonical joint: none for the pelvis and legs,
+// growing up the spine, all of it from the chest up (arms and head included).
+float upper_body_share(int joint) {
+  if (joint == kCanonHips || joint >= kCanonLeftUpLeg) return 0.0f;
+  if (joint == kCanonSpine) return 1.0f / 3.0f;
+  if (joint == kCanonSpine1) return 2.0f / 3.0f;
+  return 1.0f;
 }
 
 }  // namespace
@@ -32,6 +50,10 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   previous_animated_.resize(n);
   offset_.resize(n);
   rotations_.resize(n);
+  turn_share_.resize(n);
+  const bool canonical = library.num_joints() == kCanonJointCount;
+  for (size_t j = 0; j < n; ++j)
+    turn_share_[j] = config_.orientation_warping && canonical ? upper_body_share(static_cast<int>(j)) : 1.0f;
 }
 
 std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, float frame_alpha) {
@@ -50,6 +72,7 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   shown_ = animated_;
   if (config_.inertialization) inertialize(dt_s);
   if (config_.turn_easing) ease_turn(state, dt_s);
+  if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(dt_s);
   if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
   previous_ = shown_;
@@ -62,19 +85,81 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
 void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
   // The steering's turn this frame: the same segment playing on with its start rotated.
   if (has_previous_ && state.segment == previous_state_.segment && state.frame >= previous_state_.frame)
-    yaw_offset_ -= wrap_angle(state.segment_start.heading_rad - previous_state_.segment_start.heading_rad);
-  // Critically damped spring towards 0, solved exactly over dt (stable at any step).
-  const float k = config_.turn_stiffness, e = std::exp(-k * dt_s);
-  const float x = yaw_offset_, v = yaw_speed_;
-  yaw_offset_ = (x + (v + k * x) * dt_s) * e;
-  yaw_speed_ = (v - k * (v + k * x) * dt_s) * e;
-  if (std::abs(yaw_offset_) < 1e-5f && std::abs(yaw_speed_) < 1e-4f) yaw_offset_ = yaw_speed_ = 0.0f;
-  if (yaw_offset_ == 0.0f) return;
+    for (TurnLag& lag : turn_lag_)
+      lag.offset_rad -= wrap_angle(state.segment_start.heading_rad - previous_state_.segment_start.heading_rad);
+  bool turning = false;
+  for (int part = 0; part < 2; ++part) {
+    TurnLag& lag = turn_lag_[part];
+    spring_towards(lag.offset_rad, lag.speed_rad_s, 0.0f, part == 0 ? config_.lower_turn_stiffness : config_.turn_stiffness, dt_s);
+    if (std::abs(lag.offset_rad) < 1e-5f && std::abs(lag.speed_rad_s) < 1e-4f) lag = TurnLag{};
+    turning = turning || lag.offset_rad != 0.0f;
+  }
+  if (!turning) return;
   const vec2 pivot = playback_root(library_, state).pos_m;  // what the steering turns about
-  for (vec3& p : shown_) {
-    const vec2 g = pivot + rotate_ground(ground(p) - pivot, yaw_offset_);
+  for (size_t j = 0; j < shown_.size(); ++j) {
+    const float yaw = turn_lag_[0].offset_rad + turn_share_[j] * (turn_lag_[1].offset_rad - turn_lag_[0].offset_rad);
+    if (yaw == 0.0f) continue;
+    vec3& p = shown_[j];
+    const vec2 g = pivot + rotate_ground(ground(p) - pivot, yaw);
     p.x = g.x;
     p.z = g.y;
+  }
+}
+
+void PoseStage::adapt_to_ground(float dt_s) {
+  if (library_.num_joints() <= kCanonRightToeEnd) return;
+  const auto height_at = [this](size_t joint, float& h) {
+    return terrain_height_at(*ground_, ground(shown_[joint]), h);
+  };
+  float target[2];
+  for (int foot = 0; foot < 2; ++foot) {
+    const auto heel = static_cast<size_t>(foot_heel_joint(foot)), ball = static_cast<size_t>(foot_ball_joint(foot));
+    const bool heel_down = contact_ & foot_heel_bit(foot), ball_down = contact_ & foot_ball_bit(foot);
+    // A part held by its lock (lock_foot, next) stands where it is held.
+    const FootLock& lock = feet_[foot];
+    const auto held_at = [&](size_t joint, float& h) {
+      return lock.locked && lock.joint == static_cast<int>(joint) ? terrain_height_at(*ground_, ground(lock.at), h)
+                                                                   : height_at(joint, h);
+    };
+    float gh = 0.0f, gb = 0.0f;
+    const bool has_heel = held_at(heel, gh), has_ball = held_at(ball, gb);
+    target[foot] = foot_y_[foot];  // over a hole: where it was
+    if (heel_down && has_heel) target[foot] = gh;  // the ball then pitches to its own ground
+    else if (ball_down && has_ball) target[foot] = gb;
+    else if (has_ball || has_heel) target[foot] = has_ball ? gb : gh;  // swinging: the front of the foot leads
+  }
+  const float body_target = std::min(target[0], target[1]);
+  if (!has_ground_) {
+    for (int foot = 0; foot < 2; ++foot) foot_y_[foot] = target[foot], foot_vy_[foot] = 0.0f;
+    body_y_ = body_target;
+    body_vy_ = 0.0f;
+    has_ground_ = true;
+  } else {
+    for (int foot = 0; foot < 2; ++foot)
+      spring_towards(foot_y_[foot], foot_vy_[foot], target[foot], config_.foot_ground_stiffness, dt_s);
+    spring_towards(body_y_, body_vy_, body_target, config_.body_ground_stiffness, dt_s);
+  }
+  // The body never stays above the lower foot: that leg could not reach down.
+  const float body = std::min({body_y_, foot_y_[0], foot_y_[1]});
+  for (vec3& p : shown_) p.y += body;
+  for (int foot = 0; foot < 2; ++foot) {
+    reach(foot, vec3(0.0f, foot_y_[foot] - body, 0.0f));
+    // The foot aligned to the slope: the ball follows the ground's rise from where the foot is
+    // held, then the toe from the ball, each pitched about its parent by at most 30 degrees.
+    const auto ankle = static_cast<size_t>(foot_heel_joint(foot)), toe = ankle + 2;
+    float from = foot_y_[foot];
+    for (size_t part = ankle + 1; part <= toe; ++part) {
+      float g = 0.0f;
+      if (!height_at(part, g)) break;
+      const vec3 parent = shown_[part - 1];
+      const float length = glm::length(shown_[part] - parent);
+      const float rise = std::clamp(g - from, -0.5f * length, 0.5f * length);
+      from = g;
+      if (length < 1e-4f || std::abs(rise) < 1e-5f) continue;
+      const vec3 raised = shown_[part] + vec3(0.0f, rise, 0.0f) - parent;
+      const vec3 delta = parent + raised * (length / glm::length(raised)) - shown_[part];
+      for (size_t j = part; j <= toe; ++j) shown_[j] += delta;
+    }
   }
 }
 
@@ -90,7 +175,7 @@ void PoseStage::inertialize(float dt_s) {
       offset_left_s_ = config_.inertialize_s;
       ++discontinuities_;
       for (FootLock& f : feet_) f = FootLock{};
-      yaw_offset_ = yaw_speed_ = 0.0f;
+      turn_lag_[0] = turn_lag_[1] = TurnLag{};
       dt_s = 0.0f;
     }
   }
@@ -120,7 +205,9 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     }
     // Planted now, or rolling from heel to ball: hold the part planted where it is shown now.
     if (!f.locked || f.joint != joint) f = FootLock{true, joint, here + w * f.release, vec3(0.0f), 0.0f, false};
-    const vec3 offset = f.at - here;
+    // Held on the ground plane only: its height is the clip's over the ground (adapt_to_ground).
+    vec3 offset = f.at - here;
+    offset.y = 0.0f;
     if (glm::length(offset) > config_.max_lock_offset_m) {
       // The body has turned or moved too far over the planted foot: it steps to where the clip has it.
       f = FootLock{false, joint, here, offset, config_.release_s, true};

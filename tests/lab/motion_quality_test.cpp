@@ -39,6 +39,32 @@ TEST(MotionQuality, ThePoseStageKeepsSteeredFeetPlantedAndChangesNothingElse) {
   EXPECT_EQ(staged.response_ms_p95, raw.response_ms_p95) << "what is shown does not steer";
 }
 
+// Graph avatars on the terrain scene (its route climbs a 0.18 m step onto a second one, over
+// rolling slopes): flat-ground clips shown by the stage keep their planted feet on the ground
+// under them, where the raw playback floats or sinks by the step's height.
+TEST(MotionQuality, OnUnevenGroundThePlantedFeetAreOnTheGround) {
+  MotionLibrary lib = motion_library_default();
+  Scene scene;
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(scene_world_load("terrain", scene, world, error)) << error;
+  MotionQualityOptions options;
+  options.seeds = 2;
+  options.max_seconds = 60;
+  const std::vector<MotionQualityResult> r =
+      measure_motion_quality(lib, scene, world, motion_quality_controllers(9.424778f), options, error);
+  ASSERT_EQ(r.size(), 3u) << error;
+  const MotionQualityResult& raw = r[1];
+  const MotionQualityResult& staged = r[2];
+  EXPECT_GT(raw.ground_error_cm_max, 15.0) << "the route crosses the steps: raw feet are off the ground there";
+  EXPECT_LT(staged.ground_error_cm_p95, 2.0);
+  EXPECT_LT(staged.ground_error_cm_max, raw.ground_error_cm_max / 2.0);
+  EXPECT_LT(staged.foot_skate_cm_per_s_p95, 2.0);
+  EXPECT_LE(staged.pops, raw.pops / 4);
+  EXPECT_EQ(staged.collisions, 0);
+  EXPECT_EQ(staged.goals_reached, raw.goals_reached);
+}
+
 TEST(MotionQuality, TheLibrarysPopThresholdIsItsOwnClipsNinetyNinePointNinthPercentile) {
   const MotionLibrary lib = motion_library_default();
   const float threshold = library_pop_threshold(lib);

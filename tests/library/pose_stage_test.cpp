@@ -8,6 +8,7 @@
 #include "anim/bvh.hpp"
 #include "support/bvh_variants.hpp"
 #include "support/test_paths.hpp"
+#include "world/terrain.hpp"
 
 #include <gtest/gtest.h>
 
@@ -161,6 +162,104 @@ TEST(PoseStage, TheSteeringTurnIsEased) {
     shown = stage.update(s, 1.0f / 30.0f);
   }
   EXPECT_LT(std::abs(wrap_angle(heading_of(stage.animated()) - heading_of(shown))), 0.02f) << "caught up";
+}
+
+// Orientation warping: on the turn's frame the chest and shoulders lag the turn more than the
+// pelvis does, and both catch up.
+TEST(PoseStage, ThePelvisFollowsTheTurnBeforeTheShoulders) {
+  const MotionLibrary& lib = library();
+  const int walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(walk, 0);
+  PoseStageConfig config;
+  config.foot_locking = false;
+  PoseStage stage(lib, config);
+  PlaybackState s{walk, 0, Placement{}, -1};
+  stage.update(s, 0.0f);
+  const auto heading_of = [](std::span<const vec3> p, int left, int right) {
+    const vec3 across = p[left] - p[right];
+    return std::atan2(-across.z, across.x);
+  };
+  const auto lags = [&](std::span<const vec3> shown) {
+    return std::pair{std::abs(wrap_angle(heading_of(stage.animated(), kCanonLeftUpLeg, kCanonRightUpLeg) -
+                                         heading_of(shown, kCanonLeftUpLeg, kCanonRightUpLeg))),
+                     std::abs(wrap_angle(heading_of(stage.animated(), kCanonLeftArm, kCanonRightArm) -
+                                         heading_of(shown, kCanonLeftArm, kCanonRightArm)))};
+  };
+  s.frame = 1;
+  const vec2 root = playback_root(lib, s).pos_m;
+  s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.314f), 0.314f};
+  const auto [pelvis, shoulders] = lags(stage.update(s, 1.0f / 30.0f));
+  EXPECT_GT(pelvis, 0.05f) << "eased, not snapped";
+  EXPECT_GT(shoulders, pelvis + 0.03f) << "the upper body keeps facing longer";
+  for (int f = 2; f < 16; ++f) {
+    s.frame = f;
+    stage.update(s, 1.0f / 30.0f);
+  }
+  const auto [pelvis_after, shoulders_after] = lags(stage.shown());
+  EXPECT_LT(pelvis_after, 0.02f);
+  EXPECT_LT(shoulders_after, 0.02f);
+}
+
+// Ground adaptation: an idle avatar with its left foot on a 12 cm step, then on a 20 % slope.
+// Planted parts stand as high over the ground under them as the clip has them over its floor,
+// the pelvis goes no higher than the lower foot allows, bones keep their lengths, and on the
+// slope the foot pitches with the ground.
+float planted_ground_error(std::span<const vec3> shown, std::span<const vec3> animated, uint8_t contact,
+                           const Terrain& terrain) {
+  float worst = 0.0f;
+  for (int foot = 0; foot < 2; ++foot)
+    for (const auto& [joint, bit] : {std::pair{foot_heel_joint(foot), foot_heel_bit(foot)},
+                                    std::pair{foot_ball_joint(foot), foot_ball_bit(foot)}}) {
+      if (!(contact & bit)) continue;
+      float g = 0.0f;
+      EXPECT_TRUE(terrain_height_at(terrain, ground(shown[joint]), g));
+      worst = std::max(worst, std::abs(shown[joint].y - (g + animated[joint].y)));
+    }
+  return worst;
+}
+
+TEST(PoseStage, FeetStandOnTheGroundUnderThem) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PlaybackState s{idle, 0, Placement{}, -1};
+  Terrain step;
+  step.steps.push_back({"step", vec3(0.0f, 0.0f, -1.0f), vec3(1.0f, 0.12f, 1.0f)});  // under the left foot (+x)
+  Terrain slope;
+  slope.height_field = {vec2(-2.0f), 0.02f, 200, 200, {}};
+  for (int iz = 0; iz < 200; ++iz)
+    for (int ix = 0; ix < 200; ++ix) slope.height_field.heights_m.push_back(0.2f * (-2.0f + 0.02f * (iz + 0.5f)));
+  for (const Terrain* terrain : {&step, &slope}) {
+    PoseStage stage(lib);
+    stage.set_ground(terrain);
+    stage.update(s, 0.0f);
+    for (int f = 1; f <= 45; ++f) {
+      s.frame = f % lib.graph.segments[idle].num_frames();
+      stage.update(s, 1.0f / 30.0f);
+    }
+    const std::span<const vec3> shown = stage.shown(), animated = stage.animated();
+    ASSERT_NE(stage.contact() & (kLeftHeel | kLeftBall), 0);
+    EXPECT_LT(planted_ground_error(shown, animated, stage.contact(), *terrain), 0.005f);
+    for (const int hip : {kCanonLeftUpLeg, kCanonRightUpLeg}) {
+      EXPECT_NEAR(leg(shown, hip).upper, leg(animated, hip).upper, 1e-3f);
+      EXPECT_NEAR(leg(shown, hip).lower, leg(animated, hip).lower, 1e-3f);
+      EXPECT_LT(glm::length(shown[hip + 2] - shown[hip]), 0.996f * (leg(animated, hip).upper + leg(animated, hip).lower));
+    }
+    if (terrain == &step) {
+      EXPECT_NEAR(shown[kCanonLeftFoot].y - animated[kCanonLeftFoot].y, 0.12f, 0.005f) << "on the step";
+      EXPECT_NEAR(shown[kCanonRightFoot].y, animated[kCanonRightFoot].y, 0.005f) << "on the floor";
+      EXPECT_LE(shown[kCanonHips].y, animated[kCanonHips].y + 1e-3f) << "the pelvis is not lifted off the lower foot";
+    } else {
+      const float lower_foot = std::min(shown[kCanonLeftFoot].y - animated[kCanonLeftFoot].y,
+                                        shown[kCanonRightFoot].y - animated[kCanonRightFoot].y);
+      EXPECT_NEAR(shown[kCanonHips].y - animated[kCanonHips].y, lower_foot, 1e-3f) << "lowered to the lower foot";
+      for (const int ankle : {kCanonLeftFoot, kCanonRightFoot}) {  // the foot pitched with the slope
+        const vec3 sa = shown[ankle + 1] - shown[ankle], aa = animated[ankle + 1] - animated[ankle];
+        EXPECT_NEAR(glm::length(sa), glm::length(aa), 1e-3f);
+        EXPECT_NEAR(sa.y - aa.y, 0.2f * sa.z, 0.01f);
+      }
+    }
+  }
 }
 
 // Not only our own clips: a captured walk, rescaled to inches, under a dummy root and with its
