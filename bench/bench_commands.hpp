@@ -60,6 +60,7 @@ int bench_fighter(const FighterBenchOptions& options);
 
 struct MotionQualityBenchOptions {
   std::string scene = "maze";
+  std::string goal;      ///< The scene's goal by name (default: its first).
   MotionSource motions;  ///< Default: the built-in library.
   int seeds = 10;
   double max_seconds = 120.0;

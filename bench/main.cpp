@@ -6,7 +6,7 @@
 //   foresight-bench client [--avatars 1000] [--seconds 3] [--json]   (when foresight_client is built)
 //   foresight-bench fighter [--figure DIR] [--json]
 //   foresight-bench terrain [--seed 1] [--json]
-//   foresight-bench motion-quality [--scene maze] [--motions DIR] [--seeds 10] [--json]
+//   foresight-bench motion-quality [--scene maze] [--goal NAME] [--motions DIR] [--seeds 10] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
 #include "library/motion_source_cli.hpp"
@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
   MotionQualityBenchOptions quality;
   auto* mq = app.add_subcommand("motion-quality", "Closed-loop players: foot skate, pops, limits, response on the shown poses");
   mq->add_option("--scene", quality.scene, "Built-in scene name or scene .json path");
+  mq->add_option("--goal", quality.goal, "The scene's goal to walk to, by name (default: its first)");
   foresight::add_motion_source_options(*mq, quality.motions);
   mq->add_option("--seeds", quality.seeds, "Closed-loop player seeds per controller")->check(CLI::Range(1, 1000));
   mq->add_option("--max-seconds", quality.max_seconds, "Time cap of a run")->check(CLI::Range(1.0, 3600.0));

@@ -40,6 +40,7 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
   lab::MotionQualityOptions options;
   options.seeds = o.seeds;
   options.max_seconds = o.max_seconds;
+  options.goal = o.goal;
   const std::vector<lab::MotionQualityResult> results =
       lab::measure_motion_quality(lib, scene, world, lab::motion_quality_controllers(kSteerRadPerS), options, error);
   if (results.empty()) {
@@ -47,8 +48,9 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
     return 1;
   }
   std::printf("machine: %s\n", machine_description().c_str());
-  std::printf("scene %s, library %s, %d closed-loop player seeds per controller, pop threshold %.1f mm/frame^2\n",
-              scene.name.c_str(), lib.name.c_str(), o.seeds, 1000.0 * results.front().pop_threshold_m);
+  std::printf("scene %s (goal %s), library %s, %d closed-loop player seeds per controller, pop threshold %.1f mm/frame^2\n",
+              scene.name.c_str(), o.goal.empty() ? scene.goals.front().name.c_str() : o.goal.c_str(), lib.name.c_str(),
+              o.seeds, 1000.0 * results.front().pop_threshold_m);
   std::printf("  %-40s %7s %22s %13s %8s %7s %12s %7s %9s\n", "controller", "goals", "skate cm/s p50/p95/max",
               "ground p95/max", "pops/min", "limits", "resp p50/p95", "collide", "inertial.");
   for (const lab::MotionQualityResult& r : results)
@@ -64,7 +66,7 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
   if (o.json) {
     // Top level: the default controller (steering with the pose stage, the last row); every row
     // under "controllers"; then where it ran.
-    nlohmann::json j = {{"bench", "motion-quality"}, {"scene", scene.name}, {"library", lib.name},
+    nlohmann::json j = {{"bench", "motion-quality"}, {"scene", scene.name}, {"goal", o.goal}, {"library", lib.name},
                         {"seeds", o.seeds},          {"controller", results.back().controller}};
     j.update(result_json(results.back()));
     for (const lab::MotionQualityResult& r : results) {

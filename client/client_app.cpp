@@ -117,9 +117,10 @@ class Session {
       : window_(window), library_(library), options_(options), connection_(connection_config(options)),
         buffer_(buffer_config(options)), morphologies_(with_default(default_morphologies())),
         terrain_(morphologies_.back(), static_cast<uint8_t>(morphologies_.size() - 1)),
-        strikes_(strike_config(options)) {
+        strikes_(strike_config(options)), rig_(nullptr, follow_config(options)) {
     tree_overlay_ = options.tree_overlay;
     if (options.follow_camera) rig_.toggle_follow();
+    overlay_.set_visible(!options.hide_overlay);
     shown_.reserve(256);
     shown_fighters_.reserve(static_cast<size_t>(fighters_.config().max_fighters));
     strike_events_.reserve(64);
@@ -145,6 +146,14 @@ class Session {
   static StrikeFeedbackConfig strike_config(const ClientOptions& o) {
     StrikeFeedbackConfig c;
     c.show_delay_s = o.delay_s;
+    return c;
+  }
+  static FollowCameraConfig follow_config(const ClientOptions& o) {
+    FollowCameraConfig c;
+    if (o.follow_distance_m > 0) {  // nearer or farther, looking down at the same angle
+      c.height_m *= o.follow_distance_m / c.distance_m;
+      c.distance_m = o.follow_distance_m;
+    }
     return c;
   }
   static std::vector<Morphology> with_default(std::vector<Morphology> fighters) {
@@ -189,6 +198,7 @@ class Session {
   int last_parts_ = -1;
   uint64_t rejected_ = 0;
   int shot_frames_ = 0;
+  FrameStrip strip_;  ///< Screenshot mode: the frames taken so far.
   bool tree_overlay_ = false, tree_key_down_ = false;
   double next_tree_request_s_ = 0;
   double connected_at_s_ = 0;  ///< When the connection was last made (the script's time 0).
@@ -473,18 +483,28 @@ bool Session::frame(int& status) {
     // With --screenshot-at-s, the shot waits for that much time since connecting instead.
     const bool ready = own_seen && buffer_.size() >= 2 && (!tree_overlay_ || connection_.tree_count() > 0);
     if (ready) ++shot_frames_;
-    const bool shoot = options_.screenshot_at_s > 0
-                           ? ready && connection_.connected() && t - connected_at_s_ >= options_.screenshot_at_s
-                           : shot_frames_ >= options_.frames;
+    // A strip's later frames follow the first by strip_interval_s each (by a frame each when
+    // counting frames).
+    const bool shoot =
+        options_.screenshot_at_s > 0
+            ? ready && connection_.connected() &&
+                  t - connected_at_s_ >= options_.screenshot_at_s + strip_.frames() * options_.strip_interval_s
+            : shot_frames_ >= options_.frames + strip_.frames();
     if (shoot) {
-      std::string error;
       glReadBuffer(GL_BACK);
-      if (!write_framebuffer_png(options_.screenshot_path, width, height, error)) {
+      std::vector<uint8_t> rgb;
+      read_framebuffer(width, height, rgb);
+      strip_.add(width, height, std::move(rgb));
+    }
+    if (shoot && strip_.frames() >= options_.strip_frames) {
+      std::string error;
+      if (!strip_.write_png(options_.screenshot_path, error)) {
         std::fprintf(stderr, "foresight-client: %s\n", error.c_str());
         status = 1;
       } else {
-        std::fprintf(stderr, "foresight-client: wrote %s (%dx%d, %zu avatars, %zu fighters)\n",
-                     options_.screenshot_path.c_str(), width, height, shown_.size(), shown_fighters_.size());
+        std::fprintf(stderr, "foresight-client: wrote %s (%d frame(s) of %dx%d, %zu avatars, %zu fighters)\n",
+                     options_.screenshot_path.c_str(), strip_.frames(), width, height, shown_.size(),
+                     shown_fighters_.size());
         status = 0;
       }
       connection_.disconnect();

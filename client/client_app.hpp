@@ -35,6 +35,12 @@ struct ClientOptions {
   std::optional<Recording> script;
   /// Screenshot mode: > 0 takes the shot this many seconds after connecting (instead of `frames`).
   double screenshot_at_s = 0;
+  /// Screenshot mode: this many frames side by side in one PNG (1: a single shot),
+  /// `strip_interval_s` apart from screenshot_at_s, else consecutive frames.
+  int strip_frames = 1;
+  bool hide_overlay = false;  ///< Start with the debug overlay (F1) hidden.
+  float follow_distance_m = 0;  ///< The follow camera's distance behind the avatar (0: its default).
+  double strip_interval_s = 0.25;
   /// --resize-at-s S --resize-to WxH: > 0 resizes the window to resize_width x resize_height this
   /// many seconds after connecting (tests resizing under Xvfb, where nobody drags a border).
   double resize_at_s = 0;

@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
   app.add_flag("--tree-overlay", options.tree_overlay,
                "Start with the feasible-motion-tree overlay on (key T toggles it)");
   app.add_flag("--follow-camera", options.follow_camera, "Start with the follow camera on (key F toggles it)");
+  app.add_option("--follow-distance-m", options.follow_distance_m,
+                 "The follow camera's distance behind the avatar (default 4.5; its height follows)")
+      ->check(CLI::Range(0.5f, 50.0f));
+  app.add_flag("--no-overlay", options.hide_overlay, "Start with the debug overlay hidden (key F1 toggles it)");
   std::string script_path;
   app.add_option("--script", script_path,
                  "Steer from this recording (docs/RECORDINGS.md format) instead of the keyboard, "
@@ -56,6 +60,14 @@ int main(int argc, char** argv) {
   app.add_option("--screenshot-at-s", options.screenshot_at_s,
                  "Screenshot mode: take the shot this many seconds after connecting (instead of --frames)")
       ->check(CLI::Range(0.0, 100000.0));
+  app.add_option("--strip", options.strip_frames,
+                 "Screenshot mode: this many frames side by side in the PNG, --strip-interval-s apart "
+                 "from --screenshot-at-s (else consecutive frames)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  app.add_option("--strip-interval-s", options.strip_interval_s, "Time between the frames of a --strip")
+      ->check(CLI::Range(0.0, 60.0))
+      ->capture_default_str();
   app.add_option("--timeout", options.screenshot_timeout_s,
                  "Screenshot mode: give up (exit 1) after this many seconds")
       ->capture_default_str();

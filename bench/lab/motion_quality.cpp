@@ -48,11 +48,10 @@ struct Accumulator {
   MotionQualityResult r;
 };
 
-void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Scene& scene,
+void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Scene& scene, const GoalPoint& goal,
                  const MotionQualityController& c, const MotionQualityOptions& o, uint64_t seed,
                  float pop_threshold, Accumulator& acc) {
   const SpawnPoint& spawn = scene.spawns.front();
-  const GoalPoint& goal = scene.goals.front();
   const Placement start{spawn.pos_m, spawn.heading_rad};
   ScriptedPlayerConfig pc;
   pc.seed = seed;
@@ -145,13 +144,17 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
                                                         const CollisionWorld& world,
                                                         const std::vector<MotionQualityController>& controllers,
                                                         const MotionQualityOptions& options, std::string& error) {
-  if (scene.spawns.empty() || scene.goals.empty()) {
-    error = "motion quality: scene '" + scene.name + "' needs a spawn and a goal";
+  const auto named = std::find_if(scene.goals.begin(), scene.goals.end(),
+                                  [&](const GoalPoint& g) { return options.goal.empty() || g.name == options.goal; });
+  if (scene.spawns.empty() || named == scene.goals.end()) {
+    error = "motion quality: scene '" + scene.name + "' needs a spawn and " +
+            (options.goal.empty() ? std::string("a goal") : "a goal named '" + options.goal + "'");
     return {};
   }
+  const GoalPoint& goal = *named;
   ScriptedPlayer probe;
   if (!probe.plan(library, scene, world, {scene.spawns.front().pos_m, scene.spawns.front().heading_rad},
-                  scene.goals.front().pos_m, ScriptedPlayerConfig{}, error))
+                  goal.pos_m, ScriptedPlayerConfig{}, error))
     return {};
   const float pop_threshold = library_pop_threshold(library);
   std::vector<MotionQualityResult> results;
@@ -161,7 +164,7 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     acc.r.pose_stage = c.pose_stage;
     acc.r.pop_threshold_m = pop_threshold;
     for (int seed = 1; seed <= options.seeds; ++seed)
-      measure_run(library, world, scene, c, options, static_cast<uint64_t>(seed), pop_threshold, acc);
+      measure_run(library, world, scene, goal, c, options, static_cast<uint64_t>(seed), pop_threshold, acc);
     MotionQualityResult& r = acc.r;
     r.contact_samples = static_cast<int64_t>(acc.skate_cm_per_s.size());
     r.foot_skate_cm_per_s_p50 = percentile(acc.skate_cm_per_s, 50);

@@ -1,6 +1,7 @@
 #pragma once
 // Motion quality as a player sees it (issue 18): closed-loop players (the recordings' scripted
-// player, seeds 1..N, from the scene's first spawn to its first goal) steer each controller, and
+// player, seeds 1..N, from the scene's first spawn to its first goal or the one named) steer each
+// controller, and
 // every shown pose (the playback after the pose stage, or the raw playback without it) is
 // measured:
 //  * foot skate: horizontal speed of the planted part of a foot (heel or ball, as the clip plants
@@ -36,6 +37,7 @@ std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_
 
 struct MotionQualityOptions {
   int seeds = 10;
+  std::string goal;  ///< The scene's goal by name; empty: its first.
   double max_seconds = 120.0;
   int64_t expansions_per_frame = 200;
 };
@@ -70,7 +72,7 @@ struct MotionQualityResult {
 float library_pop_threshold(const MotionLibrary& library);
 
 /// Runs every controller; results in the controllers' order. `error` is set (and the result
-/// empty) when the scene has no spawn or goal or the player cannot plan.
+/// empty) when the scene has no spawn or no such goal, or the player cannot plan.
 std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& library, const Scene& scene,
                                                         const CollisionWorld& world,
                                                         const std::vector<MotionQualityController>& controllers,

@@ -130,9 +130,13 @@ inline double non_uniform_share(const Image& img) {
 
 // Pixels of the player's orange (1, 0.55, 0.1) under any shading: red strong, green about half,
 // blue low.
-inline size_t orange_pixels(const Image& img) {
+inline size_t orange_pixels(const Image& img, int x0 = 0, int x1 = -1) {
+  // Columns [x0, x1) only (x1 < 0: to the right edge): one frame of a --strip.
+  if (x1 < 0) x1 = img.w;
   size_t orange = 0;
   for (size_t i = 0; i < img.size(); ++i) {
+    const int x = static_cast<int>(i % static_cast<size_t>(img.w));
+    if (x < x0 || x >= x1) continue;
     const int r = img.pixels[3 * i], g = img.pixels[3 * i + 1], b = img.pixels[3 * i + 2];
     if (r > 80 && g > 0.35 * r && g < 0.75 * r && b < 0.3 * r) ++orange;
   }

@@ -202,9 +202,10 @@ TEST(ClientFighterPoses, NoAllocationOnceWarm) {
   EXPECT_EQ(out.size(), 5u);
 }
 
-// The renderer's instance list (no GL context needed to fill it): a fighter is one box per bone of
-// its morphology's skeleton plus a head block, a strike marker one box.
-TEST(ClientFighterPoses, DrawnAsOneBoxPerBoneOfItsMorphology) {
+// The renderer's instance lists (no GL context needed to fill them): a fighter is one capsule
+// per bone of its morphology's skeleton and a contact shadow under each foot standing on the
+// floor; a strike marker is one box.
+TEST(ClientFighterPoses, DrawnAsOneCapsulePerBoneOfItsMorphologyWithShadowedFeet) {
   const std::vector<Morphology> morphologies = default_morphologies();
   for (size_t m = 0; m < morphologies.size(); ++m) {
     const Skeleton& sk = morphologies[m].skeleton;
@@ -215,15 +216,24 @@ TEST(ClientFighterPoses, DrawnAsOneBoxPerBoneOfItsMorphology) {
     std::vector<vec3> local, global;
     std::vector<quat> rot;
     ASSERT_TRUE(fighter_joint_positions(morphologies, s, local, global, rot));
-    size_t bones = 1;  // the head block
+    float lowest = global.front().y;  // stand it on the floor
+    for (const vec3& p : global) lowest = std::min(lowest, p.y);
+    for (vec3& p : global) p.y -= lowest;
+    size_t bones = 0;
     for (size_t j = 1; j < global.size(); ++j)
       if (glm::length(global[j] - global[static_cast<size_t>(sk.parents[j])]) >= 0.01f) ++bones;
     Renderer renderer;  // no init(): no GL objects
     renderer.begin_frame();
     renderer.add_skeleton(sk.parents, global, vec3(0.72f, 0.06f, 0.10f));
     EXPECT_EQ(renderer.avatar_instances(), bones) << morphologies[m].name;
+    EXPECT_EQ(renderer.shadow_instances(), 2u) << "feet on the floor: " << morphologies[m].name;
     renderer.add_marker(vec3(0, 1.6f, 0), 0.2f, vec3(1, 0, 1));
     EXPECT_EQ(renderer.avatar_instances(), bones + 1);
+    // Lifted 1 m, the feet cast no contact shadow.
+    for (vec3& p : global) p.y += 1.0f;
+    renderer.begin_frame();
+    renderer.add_skeleton(sk.parents, global, vec3(0.72f, 0.06f, 0.10f));
+    EXPECT_EQ(renderer.shadow_instances(), 0u);
   }
 }
 

@@ -63,6 +63,27 @@ TEST(ClientScreenshot, RunsWithAScript) {
   EXPECT_EQ(img.h, 720);
 }
 
+// --strip: frames side by side, each showing the avatar: the turning-feet figure's own command
+// (docs/MOTION_QUALITY.md), smaller.
+TEST(ClientScreenshot, TakesAStripOfFramesOverTime) {
+  if (!have_xvfb())
+    GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps installs it)";
+  ClientRun run;
+  run.dir = scratch_dir();
+  run.name = "strip";
+  run.scene = "field";
+  run.bots = 0;
+  run.client_args = "--script " + (foresight::data_dir() / "scripts/turning-feet.json").string() +
+                    " --follow-camera --follow-distance-m 2.6 --no-overlay --width 160 --height 200"
+                    " --screenshot-at-s 2.5 --strip 4 --strip-interval-s 0.25";
+  Image img;
+  ASSERT_NO_FATAL_FAILURE(foresight::test::run_client_screenshot(run, img));
+  ASSERT_EQ(img.w, 4 * 160);
+  ASSERT_EQ(img.h, 200);
+  for (int k = 0; k < 4; ++k)
+    EXPECT_GT(orange_pixels(img, k * 160, (k + 1) * 160), 100u) << "frame " << k << " shows the avatar";
+}
+
 // Counts pixels within `tolerance` of an exact (unlit) colour.
 size_t count_colour(const Image& img, int r0, int g0, int b0, int tolerance = 12) {
   const size_t n = img.size();
