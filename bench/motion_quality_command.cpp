@@ -2,6 +2,7 @@
 // stage and steering with it (the default), and every shown pose is measured (lab/motion_quality.hpp,
 // docs/MOTION_QUALITY.md).
 #include "bench_commands.hpp"
+#include "lab/lab_experiments.hpp"
 #include "lab/motion_quality.hpp"
 #include "library/library_source.hpp"
 #include "machine_info.hpp"
@@ -15,16 +16,7 @@
 namespace foresight::bench {
 namespace {
 
-constexpr float kSteerRadPerS = 9.424778f;  // 540 deg/s, the lab's responsive controller
-
-nlohmann::json result_json(const lab::MotionQualityResult& r) {
-  return {{"foot_skate_cm_per_s_p50", r.foot_skate_cm_per_s_p50}, {"foot_skate_cm_per_s_p95", r.foot_skate_cm_per_s_p95},
-          {"foot_skate_cm_per_s_max", r.foot_skate_cm_per_s_max}, {"ground_error_cm_p95", r.ground_error_cm_p95},
-          {"ground_error_cm_max", r.ground_error_cm_max},
-          {"pops_per_min", r.pops_per_min},                       {"limit_violations", r.limit_violations},
-          {"response_ms_p50", r.response_ms_p50},                 {"response_ms_p95", r.response_ms_p95},
-          {"collisions", r.collisions},                           {"goals_reached_share", r.goals_reached_share}};
-}
+const float kSteerRadPerS = radians(lab::kLabSteerDegPerS);  // the lab's responsive controller
 
 }  // namespace
 
@@ -51,26 +43,15 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
   std::printf("scene %s (goal %s), library %s, %d closed-loop player seeds per controller, pop threshold %.1f mm/frame^2\n",
               scene.name.c_str(), o.goal.empty() ? scene.goals.front().name.c_str() : o.goal.c_str(), lib.name.c_str(),
               o.seeds, 1000.0 * results.front().pop_threshold_m);
-  std::printf("  %-40s %7s %22s %13s %8s %7s %12s %7s %9s\n", "controller", "goals", "skate cm/s p50/p95/max",
-              "ground p95/max", "pops/min", "limits", "resp p50/p95", "collide", "inertial.");
-  for (const lab::MotionQualityResult& r : results)
-    std::printf("  %-40s %3d/%-3d %6.2f / %5.2f / %6.1f %5.2f / %5.1f %8.2f %7lld %5.0f / %5.0f %7lld %9lld\n",
-                r.controller.c_str(), r.goals_reached, r.runs, r.foot_skate_cm_per_s_p50, r.foot_skate_cm_per_s_p95,
-                r.foot_skate_cm_per_s_max, r.ground_error_cm_p95, r.ground_error_cm_max, r.pops_per_min,
-                static_cast<long long>(r.limit_violations), r.response_ms_p50, r.response_ms_p95,
-                static_cast<long long>(r.collisions), static_cast<long long>(r.discontinuities));
-  for (const lab::MotionQualityResult& r : results)
-    if (r.shown_collisions != r.played_collisions)
-      std::printf("  %s: %lld shown frames collide, %lld played\n", r.controller.c_str(),
-                  static_cast<long long>(r.shown_collisions), static_cast<long long>(r.played_collisions));
+  std::fputs(lab::motion_quality_text(results).c_str(), stdout);
   if (o.json) {
     // Top level: the default controller (steering with the pose stage, the last row); every row
     // under "controllers"; then where it ran.
     nlohmann::json j = {{"bench", "motion-quality"}, {"scene", scene.name}, {"goal", o.goal}, {"library", lib.name},
                         {"seeds", o.seeds},          {"controller", results.back().controller}};
-    j.update(result_json(results.back()));
+    j.update(lab::motion_quality_json(results.back()));
     for (const lab::MotionQualityResult& r : results) {
-      nlohmann::json row = result_json(r);
+      nlohmann::json row = lab::motion_quality_json(r);
       row["name"] = r.controller;
       j["controllers"].push_back(row);
     }

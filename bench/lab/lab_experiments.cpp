@@ -120,7 +120,13 @@ LabResult run_lab(const LabScene& lab, const LabOptions& options_in) {
   phase("navigation");
   r.closed_loop = run_closed_loop_navigation(lab, options, statistics);
   phase("closed-loop");
-  for (const std::string* e : {&r.fig9.error, &r.fig10.error, &r.navigation.error, &r.closed_loop.error})
+  MotionQualityOptions quality;
+  quality.seeds = options.quick ? 1 : std::min(options.closed_loop_seeds, 10);
+  std::string quality_error;
+  r.motion_quality = measure_motion_quality(lab.library, lab.scene, lab.world,
+                                            motion_quality_controllers(radians(kLabSteerDegPerS)), quality, quality_error);
+  phase("motion-quality");
+  for (const std::string* e : {&r.fig9.error, &r.fig10.error, &r.navigation.error, &r.closed_loop.error, &quality_error})
     if (!e->empty() && r.error.empty()) r.error = *e;
   if (statistics.empty() && r.error.empty()) r.error = "learning statistics from the training recording failed";
   r.wall_s = seconds_since(t0);

@@ -3,6 +3,7 @@
 // recordings, plus the navigation comparison the paper left for future work. Functions return
 // plain structs; printing and files are lab_report / main's job (docs/LAB.md).
 #include "lab/lab_driver.hpp"
+#include "lab/motion_quality.hpp"
 #include "library/library_source.hpp"
 #include "library/motion_library.hpp"
 #include "lookahead/motion_tree.hpp"
@@ -198,6 +199,10 @@ struct ControllerSpec {
 
 /// The controller the responsiveness bar is read from (look-ahead 1 with root steering).
 inline constexpr const char* kResponsiveController = "look-ahead 1 + steering";
+/// Its steering rate (the server's default, docs/SERVER.md). 540 deg/s was the best of 270, 360
+/// and 540 in closed-loop runs with the earlier library; with this one 450 and 720 do no better on
+/// both scenes together (200 seeds each, docs/LAB.md).
+inline constexpr float kLabSteerDegPerS = 540.0f;
 
 /// Look-ahead with each strategy 0..4, look-ahead 1 with steering, then greedy depth-1, then the
 /// naive game FSM.
@@ -285,6 +290,10 @@ struct LabResult {
   /// When the lab ran on another library (--motions): the same closed loop on the built-in one,
   /// so the two libraries' figures print side by side (empty otherwise).
   std::optional<NavigationResult> builtin_closed_loop;
+  /// Motion quality on the shown poses (motion_quality.hpp): the scene's first spawn to its first
+  /// goal, closed loop (seeds 1..min(closed_loop_seeds, 10)), the paper's controller, steering raw
+  /// and steering + pose stage.
+  std::vector<MotionQualityResult> motion_quality;
   /// Both recordings carry the content hash of the library loaded now. When not, the library
   /// changed since they were recorded: even the recorder's own controller (look-ahead 1 at the
   /// navigation budget) no longer replays the recorded run exactly.

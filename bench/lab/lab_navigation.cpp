@@ -22,11 +22,8 @@ double percentile(std::vector<double> v, double p) {
   return v[i] + (pos - static_cast<double>(i)) * (v[j] - v[i]);
 }
 
-// Root steering of the "look-ahead 1 + steering" row (LookaheadAvatar, MotionTreeConfig::steer_rad_per_s):
-// 540 deg/s was the best of 270, 360 and 540 in closed-loop runs with the earlier library; with
-// this one 450 and 720 do no better on both scenes together (200 seeds each, docs/LAB.md).
-constexpr float kLabSteerDegPerS = 540.0f;
-
+// The "look-ahead 1 + steering" row steers the root (LookaheadAvatar,
+// MotionTreeConfig::steer_rad_per_s) at kLabSteerDegPerS.
 std::vector<ControllerSpec> lab_controllers(const MotionTreeConfig& base) {
   std::vector<ControllerSpec> out;
   for (int s = 0; s < kNumStrategies; ++s) {

@@ -435,6 +435,15 @@ std::string lab_json(const LabResult& r) {
       j += ",\"paper_response_ms_p50\":" + json_number(s.response_ms_p50, 1);
       j += ",\"paper_response_ms_p95\":" + json_number(s.response_ms_p95, 1);
     }
+  if (!r.motion_quality.empty()) {
+    nlohmann::json quality;
+    for (const MotionQualityResult& q : r.motion_quality) {
+      nlohmann::json row = motion_quality_json(q);
+      row["name"] = q.controller;
+      quality.push_back(row);
+    }
+    j += ",\"motion_quality\":" + quality.dump();
+  }
   j += ",\"recordings_match_library\":" + std::string(r.recordings_match_library ? "true" : "false");
   j += ",\"wall_s\":" + json_number(r.wall_s, 2);
   j += "," + bench::machine_json_fields() + "}";

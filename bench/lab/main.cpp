@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
   if (result.builtin_closed_loop)
     std::printf("The same closed loop on the built-in library, for comparison:\n%s\n",
                 navigation_text(*result.builtin_closed_loop).c_str());
+  std::printf("Motion quality on the shown poses (docs/MOTION_QUALITY.md), closed loop, scene's first spawn to its first goal:\n%s\n",
+              motion_quality_text(result.motion_quality).c_str());
   std::printf("wrote %s/{fig9.csv,fig9.svg,fig10.csv,fig10.svg,navigation.csv,responses.csv}\n", out_dir.c_str());
   std::printf("runtime %.1f s:", result.wall_s);
   for (const auto& [name, seconds] : result.phase_s) std::printf(" %s %.1f s", name.c_str(), seconds);

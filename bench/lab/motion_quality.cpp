@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace foresight::lab {
 namespace {
@@ -182,6 +183,40 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     results.push_back(r);
   }
   return results;
+}
+
+std::string motion_quality_text(const std::vector<MotionQualityResult>& results) {
+  std::string text;
+  char line[512];
+  std::snprintf(line, sizeof line, "  %-40s %7s %22s %13s %8s %7s %12s %7s %9s\n", "controller", "goals",
+                "skate cm/s p50/p95/max", "ground p95/max", "pops/min", "limits", "resp p50/p95", "collide",
+                "inertial.");
+  text += line;
+  for (const MotionQualityResult& r : results) {
+    std::snprintf(line, sizeof line,
+                  "  %-40s %3d/%-3d %6.2f / %5.2f / %6.1f %5.2f / %5.1f %8.2f %7lld %5.0f / %5.0f %7lld %9lld\n",
+                  r.controller.c_str(), r.goals_reached, r.runs, r.foot_skate_cm_per_s_p50, r.foot_skate_cm_per_s_p95,
+                  r.foot_skate_cm_per_s_max, r.ground_error_cm_p95, r.ground_error_cm_max, r.pops_per_min,
+                  static_cast<long long>(r.limit_violations), r.response_ms_p50, r.response_ms_p95,
+                  static_cast<long long>(r.collisions), static_cast<long long>(r.discontinuities));
+    text += line;
+  }
+  for (const MotionQualityResult& r : results)
+    if (r.shown_collisions != r.played_collisions) {
+      std::snprintf(line, sizeof line, "  %s: %lld shown frames collide, %lld played\n", r.controller.c_str(),
+                    static_cast<long long>(r.shown_collisions), static_cast<long long>(r.played_collisions));
+      text += line;
+    }
+  return text;
+}
+
+nlohmann::json motion_quality_json(const MotionQualityResult& r) {
+  return {{"foot_skate_cm_per_s_p50", r.foot_skate_cm_per_s_p50}, {"foot_skate_cm_per_s_p95", r.foot_skate_cm_per_s_p95},
+          {"foot_skate_cm_per_s_max", r.foot_skate_cm_per_s_max}, {"ground_error_cm_p95", r.ground_error_cm_p95},
+          {"ground_error_cm_max", r.ground_error_cm_max},         {"pops_per_min", r.pops_per_min},
+          {"limit_violations", r.limit_violations},               {"response_ms_p50", r.response_ms_p50},
+          {"response_ms_p95", r.response_ms_p95},                 {"collisions", r.collisions},
+          {"goals_reached_share", r.goals_reached_share}};
 }
 
 }  // namespace foresight::lab

@@ -20,6 +20,8 @@
 #include "world/collision_world.hpp"
 #include "world/scene.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -77,5 +79,10 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
                                                         const CollisionWorld& world,
                                                         const std::vector<MotionQualityController>& controllers,
                                                         const MotionQualityOptions& options, std::string& error);
+
+/// The results as a table, one controller a row (the bench and the lab print it).
+std::string motion_quality_text(const std::vector<MotionQualityResult>& results);
+/// One result's figures under the JSON keys issue 18 names (plus ground_error_cm_max).
+nlohmann::json motion_quality_json(const MotionQualityResult& r);
 
 }  // namespace foresight::lab

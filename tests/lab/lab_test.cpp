@@ -52,6 +52,19 @@ TEST(Lab, QuickRunOnObstaclesReproducesItsSafetyFigures) {
   }
   EXPECT_EQ(r.fig9.shape.size(), 5u);
   EXPECT_EQ(r.fig10.panels.size(), static_cast<size_t>(kNumStrategies));
+  // Motion quality rows: the paper's controller, steering raw, steering + pose stage (the
+  // default), printed and in the JSON line with the keys.
+  ASSERT_EQ(r.motion_quality.size(), 3u);
+  EXPECT_FALSE(r.motion_quality[1].pose_stage);
+  EXPECT_TRUE(r.motion_quality[2].pose_stage);
+  EXPECT_GT(r.motion_quality[1].foot_skate_cm_per_s_p95, r.motion_quality[2].foot_skate_cm_per_s_p95);
+  EXPECT_EQ(r.motion_quality[2].collisions, 0);
+  EXPECT_NE(motion_quality_text(r.motion_quality).find("steering + pose stage"), std::string::npos);
+  const std::string json = lab_json(r);
+  EXPECT_NE(json.find("\"motion_quality\":[{"), std::string::npos);
+  for (const char* key : {"\"foot_skate_cm_per_s_p95\"", "\"ground_error_cm_p95\"", "\"pops_per_min\"",
+                          "\"limit_violations\"", "\"goals_reached_share\""})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
 }
 
 // The lab on a captured library (--motions): the closed-loop player steers the Bandai capture
