@@ -6,29 +6,6 @@
 #include <cmath>
 
 namespace foresight {
-namespace {
-
-/// On top of the caller's veto, rules out the children a steered avatar should not take while a
-/// direction is held: traps (segments listed), and, when `ends_standing` is given, every child
-/// that ends standing. A root's children all start where the root ends, so the segment names one.
-class SteeredChoice final : public ChildVeto {
- public:
-  SteeredChoice(const std::vector<int>& traps, const std::vector<uint8_t>* ends_standing, const ChildVeto* outer)
-      : traps_(traps), ends_standing_(ends_standing), outer_(outer) {}
-  virtual ~SteeredChoice() = default;
-  bool blocks(int segment, const Placement& start) const override {
-    return (ends_standing_ != nullptr && (*ends_standing_)[static_cast<size_t>(segment)] != 0) ||
-           std::find(traps_.begin(), traps_.end(), segment) != traps_.end() ||
-           (outer_ != nullptr && outer_->blocks(segment, start));
-  }
-
- private:
-  const std::vector<int>& traps_;
-  const std::vector<uint8_t>* ends_standing_;
-  const ChildVeto* outer_;
-};
-
-}  // namespace
 
 int find_fallback_segment(const MotionLibrary& library, bool crouching) {
   int best = -1;
@@ -313,18 +290,30 @@ void LookaheadAvatar::find_traps() {
 // start. So a moving avatar takes a child that ends standing only if no child that keeps moving
 // is feasible; and no avatar walks into a trap (find_traps) while anything else is feasible.
 int LookaheadAvatar::select_child(const ChildVeto* veto) {
-  const int best = tree_.select_child(veto);
   const vec2 command = steering_command();
-  if (best < 0 || tree_.config().steer_rad_per_s <= 0.0f || glm::dot(command, command) < 1e-8f) return best;
+  if (tree_.config().steer_rad_per_s <= 0.0f || glm::dot(command, command) < 1e-8f) return tree_.select_child(veto);
+  // Three choices from one ranking, each child's veto (every frame of it against the others'
+  // reservations, on the server) asked at most once: this runs every frame for every standing
+  // avatar with a key held.
+  const std::span<const int> ranked = tree_.ranked_children();
+  if (ranked.empty()) return -1;
   find_traps();
-  if (!ends_standing_[static_cast<size_t>(playback_.segment)]) {
-    const SteeredChoice keep_moving(traps_, &ends_standing_, veto);
-    const int moving = tree_.select_child(&keep_moving);
-    if (moving >= 0) return moving;
+  const bool want_moving = !ends_standing_[static_cast<size_t>(playback_.segment)];
+  int best = -1, moving = -1, free = -1;
+  for (const int c : ranked) {
+    const int segment = tree_.node(c).segment;
+    const bool trap = std::find(traps_.begin(), traps_.end(), segment) != traps_.end();
+    const bool could_move = want_moving && moving < 0 && !trap && !ends_standing_[static_cast<size_t>(segment)];
+    const bool could_be_free = free < 0 && !trap;
+    if (best >= 0 && !could_move && !could_be_free) continue;  // nothing left for it to answer
+    if (veto != nullptr && veto->blocks(segment, tree_.node(c).start)) continue;
+    if (best < 0) best = c;
+    if (could_move) moving = c;
+    if (could_be_free) free = c;
+    if ((moving >= 0 || !want_moving) && free >= 0) break;
   }
+  if (moving >= 0) return moving;
   if (traps_.empty()) return best;
-  const SteeredChoice no_trap(traps_, nullptr, veto);
-  const int free = tree_.select_child(&no_trap);
   return free >= 0 ? free : best;
 }
 

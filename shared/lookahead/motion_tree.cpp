@@ -15,15 +15,19 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
   queue_.reserve(static_cast<size_t>(config_.max_nodes));
   visit_stack_.reserve(static_cast<size_t>(config_.max_nodes));
   ranked_.reserve(64);  // a segment's successors; grows once if a graph has more
+  ranked_nodes_.reserve(64);
+  root_sums_.reserve(64);
   if (!library_.clips.empty()) segment_fps_ = library_.clips.front().fps;
   reset(0, Placement{});
 }
 
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
   priorities_stale_ = false;
-  for (int i = 0; i < config_.max_nodes; ++i)
-    nodes_[static_cast<size_t>(i)].next_sibling = i + 1 < config_.max_nodes ? i + 1 : -1;
-  free_head_ = 0;
+  sums_valid_ = false;
+  // O(1): steering resets a tree every steered frame. Nodes come from the free list, then from
+  // the never-used part of the pool; in the same order as a list of every node would give them.
+  free_head_ = -1;
+  first_unused_ = 0;
   num_nodes_ = 0;
   next_order_ = 0;
   queue_.clear();
@@ -39,10 +43,15 @@ void MotionTree::reset(int segment, const Placement& start, int incoming_transit
 }
 
 int MotionTree::allocate() {
-  assert(free_head_ >= 0);
-  const int i = free_head_;
+  int i = first_unused_;
+  if (free_head_ >= 0) {
+    i = free_head_;
+    free_head_ = nodes_[static_cast<size_t>(i)].next_sibling;
+  } else {
+    assert(first_unused_ < config_.max_nodes);
+    ++first_unused_;
+  }
   MotionTreeNode& n = nodes_[static_cast<size_t>(i)];
-  free_head_ = n.next_sibling;
   n = MotionTreeNode{};
   order_[static_cast<size_t>(i)] = next_order_++;
   ++num_nodes_;
@@ -118,9 +127,15 @@ float MotionTree::grow_priority_of(const MotionTreeNode& n, float parent_grow) c
 }
 
 void MotionTree::set_command(vec2 world_direction, const Placement& avatar, bool crouch) {
-  crouch_ = crouch;
   const float len = glm::length(world_direction);
-  command_ = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
+  const vec2 command = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
+  // The same command from the same place matches every node as it does now (the server re-sorts
+  // periodically; a standing avatar's full tree would be walked twice for nothing).
+  if (!priorities_stale_ && crouch == crouch_ && command == command_ && avatar.pos_m == avatar_.pos_m &&
+      avatar.heading_rad == avatar_.heading_rad)
+    return;
+  crouch_ = crouch;
+  command_ = command;
   avatar_ = avatar;
   refresh_priorities();
   if (priorities_stale_ || config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid)
@@ -136,6 +151,7 @@ void MotionTree::update_priorities_if_stale() {
 }
 
 void MotionTree::refresh_priorities() {
+  sums_valid_ = false;  // every match changes
   const bool resort = config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid;
   // Depth-first from the root visits every parent before its children.
   for_each_node([&](int index, const MotionTreeNode& n) {
@@ -186,6 +202,7 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
     queue_.pop_back();
 
     const int leaf_index = best.node;
+    const int branch = branch_of(leaf_index);  // the root's child this leaf's children add to
     const Placement place =
         leaf.start.compose(library_.segment_motion[static_cast<size_t>(leaf.segment)].end);
     const int first_transition = library_.graph.first_transition[leaf.segment];
@@ -212,6 +229,10 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       c.next_sibling = parent.first_child;
       parent.first_child = child;
       ++result.nodes_added;
+      if (sums_valid_) {
+        if (branch < 0) root_sums_.push_back({child, 0.0f, true});  // a new child of the root
+        else mark_branch_changed(branch);
+      }
       if (c.depth < config_.max_depth) {
         queue_.push_back({c.grow_priority, order_[static_cast<size_t>(child)], child});
         std::push_heap(queue_.begin(), queue_.end(), queue_less);
@@ -222,33 +243,66 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
   return result;
 }
 
-int MotionTree::select_child(const ChildVeto* veto) {
-  update_priorities_if_stale();
-  const auto& w = config_.selection_weights;
-  // Branch sums (4.3): every node of a child's branch, weighted by its depth below the root. The
-  // veto (a reservation check of every frame, on the server) is then asked best first, so only
-  // the children better than the one taken are checked.
-  ranked_.clear();
-  for (int c = nodes_[static_cast<size_t>(root_)].first_child; c >= 0;
-       c = nodes_[static_cast<size_t>(c)].next_sibling) {
-    float sum = 0.0f;
-    visit_stack_.clear();
-    visit_stack_.push_back(c);
-    while (!visit_stack_.empty()) {
-      const MotionTreeNode& n = nodes_[static_cast<size_t>(visit_stack_.back())];
-      visit_stack_.pop_back();
-      sum += w[std::min(static_cast<size_t>(n.depth - 1), w.size() - 1)] * n.match;
-      for (int k = n.first_child; k >= 0; k = nodes_[static_cast<size_t>(k)].next_sibling)
-        visit_stack_.push_back(k);
+// The root's child whose branch holds `index` (-1 for the root itself).
+int MotionTree::branch_of(int index) const {
+  if (index == root_) return -1;
+  while (nodes_[static_cast<size_t>(index)].parent != root_) index = nodes_[static_cast<size_t>(index)].parent;
+  return index;
+}
+
+void MotionTree::mark_branch_changed(int branch) {
+  for (RootChildSum& r : root_sums_)
+    if (r.node == branch) {
+      r.changed = true;
+      return;
     }
-    ranked_.push_back({sum, order_[static_cast<size_t>(c)], c});
+}
+
+std::span<const int> MotionTree::ranked_children() {
+  update_priorities_if_stale();
+  // Branch sums (4.3): every node of a child's branch, weighted by its depth below the root.
+  // Kept per child between calls and summed again only for the branches that grew since (a
+  // standing avatar decides every frame on a tree that grows a few branches at a time); all of
+  // them after anything that changes every match or depth.
+  if (!sums_valid_) {
+    root_sums_.clear();
+    for (int c = nodes_[static_cast<size_t>(root_)].first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
+      root_sums_.push_back({c, 0.0f, true});
+    sums_valid_ = true;
+  }
+  const auto& w = config_.selection_weights;
+  ranked_.clear();
+  for (RootChildSum& r : root_sums_) {
+    if (r.changed) {
+      float sum = 0.0f;
+      visit_stack_.clear();
+      visit_stack_.push_back(r.node);
+      while (!visit_stack_.empty()) {
+        const MotionTreeNode& n = nodes_[static_cast<size_t>(visit_stack_.back())];
+        visit_stack_.pop_back();
+        sum += w[std::min(static_cast<size_t>(n.depth - 1), w.size() - 1)] * n.match;
+        for (int k = n.first_child; k >= 0; k = nodes_[static_cast<size_t>(k)].next_sibling)
+          visit_stack_.push_back(k);
+      }
+      r.sum = sum;
+      r.changed = false;
+    }
+    ranked_.push_back({r.sum, order_[static_cast<size_t>(r.node)], r.node});
   }
   std::sort(ranked_.begin(), ranked_.end(), [](const RankedChild& a, const RankedChild& b) {
     return a.sum > b.sum || (a.sum == b.sum && a.order < b.order);
   });
-  for (const RankedChild& r : ranked_) {
-    const MotionTreeNode& n = nodes_[static_cast<size_t>(r.node)];
-    if (veto == nullptr || !veto->blocks(n.segment, n.start)) return r.node;
+  ranked_nodes_.clear();
+  for (const RankedChild& r : ranked_) ranked_nodes_.push_back(r.node);
+  return ranked_nodes_;
+}
+
+int MotionTree::select_child(const ChildVeto* veto) {
+  // The veto (a reservation check of every frame, on the server) is asked best first, so only
+  // the children better than the one taken are checked.
+  for (const int c : ranked_children()) {
+    const MotionTreeNode& n = nodes_[static_cast<size_t>(c)];
+    if (veto == nullptr || !veto->blocks(n.segment, n.start)) return c;
   }
   return -1;
 }
@@ -271,6 +325,7 @@ int MotionTree::advance_root(int child) {
   // Depths are relative to the root, so the depth cap keeps looking the same distance ahead.
   for_each_node([&](int index, const MotionTreeNode&) { --nodes_[static_cast<size_t>(index)].depth; });
   priorities_stale_ = true;
+  sums_valid_ = false;
   return r.transition;
 }
 

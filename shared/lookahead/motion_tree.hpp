@@ -20,6 +20,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace foresight {
@@ -148,6 +149,9 @@ class MotionTree {
   /// when the root has no feasible child (none that `veto` lets through). Ties go to the earlier
   /// child.
   int select_child(const ChildVeto* veto = nullptr);
+  /// The root's children best first by the same ranking (one walk of the tree), for a caller
+  /// choosing under several rules at once (LookaheadAvatar::select_child).
+  std::span<const int> ranked_children();
 
   /// Makes `child` (a child of the root) the root and frees every other branch. Returns the graph
   /// transition that enters it. Priorities (products from the root) and the leaf queue are
@@ -193,6 +197,8 @@ class MotionTree {
   }
 
   int allocate();
+  int branch_of(int index) const;
+  void mark_branch_changed(int branch);
   void free_subtree(int index);
   float base_match(const MotionTreeNode& n) const;
   float statistic(const MotionTreeNode& n) const;
@@ -215,8 +221,19 @@ class MotionTree {
     int node;
   };
   std::vector<RankedChild> ranked_;  ///< select_child()'s scratch (capacity kept).
+  std::vector<int> ranked_nodes_;    ///< ranked_children()'s result (capacity kept).
   int free_head_ = -1;
+  int first_unused_ = 0;  ///< Nodes from here on were never allocated since reset().
   int num_nodes_ = 0;
+  /// Per child of the root: its branch sum as of the last ranking, and whether its branch grew
+  /// since. Valid while sums_valid_ (cleared by reset, advance_root and new matches).
+  struct RootChildSum {
+    int node;
+    float sum;
+    bool changed;
+  };
+  std::vector<RootChildSum> root_sums_;
+  bool sums_valid_ = false;
   int root_ = -1;
   bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
   uint32_t next_order_ = 0;
