@@ -17,13 +17,15 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
   ranked_.reserve(64);  // a segment's successors; grows once if a graph has more
   ranked_nodes_.reserve(64);
   root_sums_.reserve(64);
+  branch_stack_.reserve(1024);  // depth x branching; grows (once) only for an unusually bushy tree
   if (!library_.clips.empty()) segment_fps_ = library_.clips.front().fps;
   reset(0, Placement{});
 }
 
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
   priorities_stale_ = false;
-  sums_valid_ = false;
+  root_sums_.clear();  // the root alone: no branches
+  sums_valid_ = true;
   // O(1): steering resets a tree every steered frame. Nodes come from the free list, then from
   // the never-used part of the pool; in the same order as a list of every node would give them.
   free_head_ = -1;
@@ -151,20 +153,35 @@ void MotionTree::update_priorities_if_stale() {
 }
 
 void MotionTree::refresh_priorities() {
-  sums_valid_ = false;  // every match changes
   const bool resort = config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid;
-  // Depth-first from the root visits every parent before its children.
-  for_each_node([&](int index, const MotionTreeNode& n) {
+  const auto& w = config_.selection_weights;
+  // Depth-first from the root visits every parent before its children; the same pass sums each
+  // of the root's branches again (4.3).
+  root_sums_.clear();
+  branch_stack_.clear();
+  branch_stack_.push_back({root_, -1});
+  while (!branch_stack_.empty()) {
+    const auto [index, slot_in] = branch_stack_.back();
+    branch_stack_.pop_back();
     MotionTreeNode& node = nodes_[static_cast<size_t>(index)];
-    if (n.parent < 0) {
+    int slot = slot_in;
+    if (node.parent < 0) {
       node.match = 1.0f;
       if (resort) node.grow_priority = 1.0f;
-      return;
+    } else {
+      const MotionTreeNode& p = nodes_[static_cast<size_t>(node.parent)];
+      node.match = p.match * base_match(node);
+      if (resort) node.grow_priority = grow_priority_of(node, p.grow_priority);
+      if (slot < 0) {  // a child of the root: its own branch
+        slot = static_cast<int>(root_sums_.size());
+        root_sums_.push_back({index, 0});
+      }
+      root_sums_[static_cast<size_t>(slot)].sum += branch_weight(w, node);
     }
-    const MotionTreeNode& p = nodes_[static_cast<size_t>(n.parent)];
-    node.match = p.match * base_match(n);
-    if (resort) node.grow_priority = grow_priority_of(node, p.grow_priority);
-  });
+    for (int c = node.first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
+      branch_stack_.push_back({c, slot});
+  }
+  sums_valid_ = true;
 }
 
 void MotionTree::rebuild_queue() {
@@ -178,6 +195,7 @@ void MotionTree::rebuild_queue() {
 
 GrowResult MotionTree::grow(const GrowBudget& budget) {
   update_priorities_if_stale();
+  const auto& w = config_.selection_weights;
   GrowResult result;
   const bool has_deadline = budget.deadline != std::chrono::steady_clock::time_point::max();
   while (true) {
@@ -202,7 +220,7 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
     queue_.pop_back();
 
     const int leaf_index = best.node;
-    const int branch = branch_of(leaf_index);  // the root's child this leaf's children add to
+    const int branch_slot = sums_valid_ ? branch_slot_of(leaf_index) : -1;  // where its children's weights add
     const Placement place =
         leaf.start.compose(library_.segment_motion[static_cast<size_t>(leaf.segment)].end);
     const int first_transition = library_.graph.first_transition[leaf.segment];
@@ -230,8 +248,9 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       parent.first_child = child;
       ++result.nodes_added;
       if (sums_valid_) {
-        if (branch < 0) root_sums_.push_back({child, 0.0f, true});  // a new child of the root
-        else mark_branch_changed(branch);
+        const int64_t weighted = branch_weight(w, c);
+        if (branch_slot < 0) root_sums_.push_back({child, weighted});  // a new child of the root
+        else root_sums_[static_cast<size_t>(branch_slot)].sum += weighted;
       }
       if (c.depth < config_.max_depth) {
         queue_.push_back({c.grow_priority, order_[static_cast<size_t>(child)], child});
@@ -243,52 +262,32 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
   return result;
 }
 
-// The root's child whose branch holds `index` (-1 for the root itself).
-int MotionTree::branch_of(int index) const {
-  if (index == root_) return -1;
-  while (nodes_[static_cast<size_t>(index)].parent != root_) index = nodes_[static_cast<size_t>(index)].parent;
-  return index;
+// One node's share of its branch sum (4.3): its match weighted by its depth below the root, in
+// fixed point (2^-32), so that a sum is the same whatever order its nodes are added in (grow
+// adds them one by one; refresh_priorities all at once) and the ranking never depends on it.
+int64_t MotionTree::branch_weight(const std::array<float, 8>& w, const MotionTreeNode& n) {
+  const double weighted = static_cast<double>(w[std::min(static_cast<size_t>(n.depth - 1), w.size() - 1)]) * n.match;
+  return static_cast<int64_t>(std::llround(weighted * 4294967296.0));
 }
 
-void MotionTree::mark_branch_changed(int branch) {
-  for (RootChildSum& r : root_sums_)
-    if (r.node == branch) {
-      r.changed = true;
-      return;
-    }
+// The root_sums_ entry of the root's child whose branch holds `index` (-1 for the root itself).
+int MotionTree::branch_slot_of(int index) const {
+  if (index == root_) return -1;
+  while (nodes_[static_cast<size_t>(index)].parent != root_) index = nodes_[static_cast<size_t>(index)].parent;
+  for (size_t i = 0; i < root_sums_.size(); ++i)
+    if (root_sums_[i].node == index) return static_cast<int>(i);
+  assert(false && "every child of the root has a branch sum");
+  return -1;
 }
 
 std::span<const int> MotionTree::ranked_children() {
+  // Branch sums (4.3): every node of a child's branch, weighted by its depth below the root,
+  // summed as the nodes come (grow) and all again whenever every match or depth changes
+  // (refresh_priorities): ranking is then a sort of the root's few children, every frame.
   update_priorities_if_stale();
-  // Branch sums (4.3): every node of a child's branch, weighted by its depth below the root.
-  // Kept per child between calls and summed again only for the branches that grew since (a
-  // standing avatar decides every frame on a tree that grows a few branches at a time); all of
-  // them after anything that changes every match or depth.
-  if (!sums_valid_) {
-    root_sums_.clear();
-    for (int c = nodes_[static_cast<size_t>(root_)].first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
-      root_sums_.push_back({c, 0.0f, true});
-    sums_valid_ = true;
-  }
-  const auto& w = config_.selection_weights;
+  if (!sums_valid_) refresh_priorities();
   ranked_.clear();
-  for (RootChildSum& r : root_sums_) {
-    if (r.changed) {
-      float sum = 0.0f;
-      visit_stack_.clear();
-      visit_stack_.push_back(r.node);
-      while (!visit_stack_.empty()) {
-        const MotionTreeNode& n = nodes_[static_cast<size_t>(visit_stack_.back())];
-        visit_stack_.pop_back();
-        sum += w[std::min(static_cast<size_t>(n.depth - 1), w.size() - 1)] * n.match;
-        for (int k = n.first_child; k >= 0; k = nodes_[static_cast<size_t>(k)].next_sibling)
-          visit_stack_.push_back(k);
-      }
-      r.sum = sum;
-      r.changed = false;
-    }
-    ranked_.push_back({r.sum, order_[static_cast<size_t>(r.node)], r.node});
-  }
+  for (const RootChildSum& r : root_sums_) ranked_.push_back({r.sum, order_[static_cast<size_t>(r.node)], r.node});
   std::sort(ranked_.begin(), ranked_.end(), [](const RankedChild& a, const RankedChild& b) {
     return a.sum > b.sum || (a.sum == b.sum && a.order < b.order);
   });

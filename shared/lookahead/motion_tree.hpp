@@ -197,8 +197,8 @@ class MotionTree {
   }
 
   int allocate();
-  int branch_of(int index) const;
-  void mark_branch_changed(int branch);
+  int branch_slot_of(int index) const;
+  static int64_t branch_weight(const std::array<float, 8>& weights, const MotionTreeNode& n);
   void free_subtree(int index);
   float base_match(const MotionTreeNode& n) const;
   float statistic(const MotionTreeNode& n) const;
@@ -216,7 +216,7 @@ class MotionTree {
   std::vector<QueueEntry> queue_;
   mutable std::vector<int> visit_stack_;
   struct RankedChild {
-    float sum;
+    int64_t sum;  ///< RootChildSum::sum.
     uint32_t order;
     int node;
   };
@@ -225,15 +225,15 @@ class MotionTree {
   int free_head_ = -1;
   int first_unused_ = 0;  ///< Nodes from here on were never allocated since reset().
   int num_nodes_ = 0;
-  /// Per child of the root: its branch sum as of the last ranking, and whether its branch grew
-  /// since. Valid while sums_valid_ (cleared by reset, advance_root and new matches).
+  /// Per child of the root: its branch sum, kept up to date as nodes are added. Valid while
+  /// sums_valid_ (advance_root changes every depth: the next refresh_priorities sums again).
   struct RootChildSum {
     int node;
-    float sum;
-    bool changed;
+    int64_t sum;  ///< Fixed point: branch_weight().
   };
   std::vector<RootChildSum> root_sums_;
   bool sums_valid_ = false;
+  std::vector<std::pair<int, int>> branch_stack_;  ///< refresh_priorities' walk: node, root_sums_ slot.
   int root_ = -1;
   bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
   uint32_t next_order_ = 0;
