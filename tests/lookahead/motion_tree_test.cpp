@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 namespace foresight {
 namespace {
@@ -227,6 +229,47 @@ TEST(MotionTree, StatisticPrioritiesFollowTheLearnedChoices) {
       }
   });
   EXPECT_GT(favoured_size * 2, t.num_nodes());
+}
+
+// The branch sums are kept as nodes come and summed again only when matches or depths change:
+// at every step of growing, re-commanding and advancing, the ranking is the one a fresh walk of
+// the whole tree gives (paper 4.3: weights by depth below the root times each node's match).
+TEST(MotionTree, KeptBranchSumsRankAsAFreshWalkOfTheTreeDoes) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTree t(lib, arena.world, config_for(Strategy::kCommand));
+  t.reset(walk_segment(lib), kOpen);
+  const auto fresh_ranking = [&] {
+    const auto& w = t.config().selection_weights;
+    std::vector<std::pair<double, int>> sums;  // -sum, so that sorting puts the largest first
+    for (int c = t.node(t.root()).first_child; c >= 0; c = t.node(c).next_sibling) {
+      double sum = 0.0;
+      std::vector<int> stack{c};
+      while (!stack.empty()) {
+        const MotionTreeNode& n = t.node(stack.back());
+        stack.pop_back();
+        sum += w[std::min<size_t>(n.depth - 1, w.size() - 1)] * static_cast<double>(n.match);
+        for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) stack.push_back(k);
+      }
+      sums.emplace_back(-sum, c);
+    }
+    std::sort(sums.begin(), sums.end());
+    std::vector<int> order;
+    for (const auto& [sum, c] : sums) order.push_back(c);
+    return order;
+  };
+  const vec2 commands[] = {{0, 1}, {1, 0}, {-1, 1}, {0, -1}};
+  int checks = 0;
+  for (int step = 0; step < 24; ++step) {
+    if (step % 6 == 0) t.set_command(commands[(step / 6) % 4], t.node(t.root()).start, false);
+    t.grow(GrowBudget::expansions(40));
+    const std::span<const int> kept = t.ranked_children();
+    ASSERT_EQ(std::vector<int>(kept.begin(), kept.end()), fresh_ranking()) << "step " << step;
+    ++checks;
+    if (step % 4 == 3 && !kept.empty()) t.advance_root(kept.front());
+  }
+  EXPECT_EQ(checks, 24);
+  EXPECT_GT(t.num_nodes(), 50);
 }
 
 TEST(Strategy, NamesAndNumbersParseAndUnknownNamesDoNot) {
