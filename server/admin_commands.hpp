@@ -12,7 +12,9 @@
 //   help
 // Lines are queued from any thread (post) and run on the tick thread at the start of the next
 // tick (Server::run_tick), so a command never races the simulation; the reply goes to the
-// poster's callback, or to stdout when it gave none.
+// poster's callback, or to stdout when it gave none. A reply carries an HTTP-style status: 200
+// done, 400 a malformed command (a bad value, a missing or an extra word: nothing is applied),
+// 404 an unknown command, setting or fighter.
 #include <functional>
 #include <mutex>
 #include <string>
@@ -20,15 +22,20 @@
 
 namespace foresight::server {
 
+struct AdminReply {
+  int status = 200;  ///< 200 done, 400 malformed (not applied), 404 unknown.
+  std::string text;
+};
+
 struct AdminRequest {
   std::string line;
-  std::function<void(const std::string& reply)> reply;  ///< Called on the tick thread; may be empty.
+  std::function<void(const AdminReply& reply)> reply;  ///< Called on the tick thread; may be empty.
 };
 
 class AdminQueue {
  public:
   /// Any thread.
-  void post(std::string line, std::function<void(const std::string&)> reply = {}) {
+  void post(std::string line, std::function<void(const AdminReply&)> reply = {}) {
     std::lock_guard<std::mutex> lock(mutex_);
     requests_.push_back({std::move(line), std::move(reply)});
   }

@@ -43,7 +43,10 @@ AdminEndpoint::~AdminEndpoint() {
 
 bool AdminEndpoint::start(const std::string& bind_address, int port, std::string& error) {
   httplib::Server& http = impl_->http;
-  http.new_task_queue = [] { return new httplib::ThreadPool(2); };
+  http.new_task_queue = [] { return new httplib::ThreadPool(kConnections); };
+  http.set_read_timeout(kIoTimeoutS, 0);
+  http.set_write_timeout(kIoTimeoutS, 0);
+  http.set_keep_alive_timeout(kIoTimeoutS);
   const auto authorised = [this](const httplib::Request& req, httplib::Response& res) {
     const std::string bearer = req.get_header_value("Authorization");
     const bool ok = (bearer.rfind("Bearer ", 0) == 0 && same_secret(bearer.substr(7), token_)) ||
@@ -75,15 +78,17 @@ bool AdminEndpoint::start(const std::string& bind_address, int port, std::string
       res.set_content("one command line (at most 256 bytes) in the body; 'help' lists them\n", "text/plain");
       return;
     }
-    auto reply = std::make_shared<std::promise<std::string>>();
-    std::future<std::string> answer = reply->get_future();
-    queue_->post(req.body, [reply](const std::string& text) { reply->set_value(text); });
+    auto reply = std::make_shared<std::promise<AdminReply>>();
+    std::future<AdminReply> answer = reply->get_future();
+    queue_->post(req.body, [reply](const AdminReply& r) { reply->set_value(r); });
     if (answer.wait_for(std::chrono::duration<double>(kCommandTimeoutS)) != std::future_status::ready) {
       res.status = 504;
       res.set_content("the tick thread did not answer (server stopping or stalled?)\n", "text/plain");
       return;
     }
-    res.set_content(answer.get() + "\n", "text/plain");
+    const AdminReply r = answer.get();
+    res.status = r.status;
+    res.set_content(r.text + "\n", "text/plain");
   });
   http.Get("/", [authorised](const httplib::Request& req, httplib::Response& res) {
     if (authorised(req, res)) res.set_content(admin_page_html(), "text/html; charset=utf-8");

@@ -32,6 +32,13 @@ class AdminEndpoint {
   const std::string& token() const { return token_; }
   /// How long POST /command waits for the tick thread's reply.
   static constexpr double kCommandTimeoutS = 2.0;
+  /// Connections served at once. cpp-httplib gives each connection a thread for as long as it is
+  /// open, and a client that sends its request a line a second never hits the per-read timeout:
+  /// with two threads, two such clients took the health checks down (issue 19). Past this many
+  /// slow or idle connections, new requests wait for one to close (after kIoTimeoutS idle).
+  static constexpr int kConnections = 64;
+  /// Per read, per write and keep-alive idle time of a connection.
+  static constexpr int kIoTimeoutS = 2;
 
  private:
   struct Impl;

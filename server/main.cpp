@@ -20,24 +20,37 @@ extern "C" void on_signal(int) {
 }
 }  // namespace
 
+// Exit codes (docs/SERVER.md "Exit codes"): what an orchestrator or a script can act on.
+enum ExitCode : int {
+  kExitStopped = 0,      ///< Stopped as asked (signal, --seconds), or --help / --write-config done.
+  kExitStartFailed = 1,  ///< The configuration was fine but the server could not start or write.
+  kExitBadConfig = 2,    ///< The command line or the --config file is wrong: fix it, do not retry.
+};
+
 int main(int argc, char** argv) {
   using namespace foresight;
   server::ServerCommandLine cli;
   CLI::App app{"Foresight authoritative server: players and bots connect over UDP"};
   server::add_server_options(app, cli);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 prints the help, or the mistake with the --help hint; its own codes (105, 106, ...)
+    // name its internal error classes, so every mistake is one code here.
+    return app.exit(e) == 0 ? kExitStopped : kExitBadConfig;
+  }
   std::string error;
   if (!server::finish_server_options(cli, error)) {
     std::fprintf(stderr, "foresight-server: %s\n", error.c_str());
-    return 2;
+    return kExitBadConfig;
   }
   if (!cli.write_config.empty()) {
     if (!file_write_atomic(cli.write_config, server::server_config_text(app), error)) {
       std::fprintf(stderr, "foresight-server: %s\n", error.c_str());
-      return 1;
+      return kExitStartFailed;
     }
     std::fprintf(stderr, "foresight-server: wrote %s\n", cli.write_config.c_str());
-    return 0;
+    return kExitStopped;
   }
   const server::ServerConfig& config = cli.config;
   const double seconds = cli.seconds;
@@ -45,7 +58,7 @@ int main(int argc, char** argv) {
   server::Server server;
   if (!server.start(config, error)) {
     std::fprintf(stderr, "foresight-server: %s\n", error.c_str());
-    return 1;
+    return kExitStartFailed;
   }
   g_server = &server;
   std::signal(SIGINT, on_signal);
@@ -79,5 +92,5 @@ int main(int argc, char** argv) {
                static_cast<unsigned long long>(c.packets_in), static_cast<unsigned long long>(c.drops.total()),
                static_cast<unsigned long long>(c.avatar_contacts));
   g_server = nullptr;
-  return 0;
+  return kExitStopped;
 }

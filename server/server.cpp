@@ -193,11 +193,11 @@ void Server::run_tick(Clock::time_point now) {
   expire(now);
   admin_queue_->take(admin_requests_);
   for (const AdminRequest& r : admin_requests_) {
-    const std::string reply = admin_command(r.line);
+    const AdminReply reply = admin_command(r.line);
     if (r.reply) {
       r.reply(reply);
     } else {
-      std::printf("%s\n", reply.c_str());
+      std::printf("%s%s\n", reply.status == 200 ? "" : "error: ", reply.text.c_str());
       std::fflush(stdout);
     }
   }

@@ -121,7 +121,7 @@ class Server {
   std::vector<uint32_t> fighter_ids() const;
   int num_fighters() const { return num_fighters_; }
   /// Runs one supervisor command (admin_commands.hpp) now and returns the reply. Tick thread only.
-  std::string admin_command(const std::string& line);
+  AdminReply admin_command(const std::string& line);
   /// Where any thread (the console) queues commands; they run at the start of the next tick and
   /// their replies go to stdout. Shared, so a console thread can outlive the server safely.
   std::shared_ptr<AdminQueue> admin_queue() const { return admin_queue_; }
@@ -191,7 +191,7 @@ class Server {
   void collect_terrain_body(const Player& p);
   void log_status() const;
   void publish_admin(Clock::time_point now);
-  std::string admin_set(const std::string& key, const std::string& value);
+  AdminReply admin_set(const std::string& key, const std::string& value);
   /// Where avatars may stand near `around` (the scene allows it; other avatars not considered),
   /// nearest first, at most `max_places`.
   std::vector<Placement> free_places_around(std::span<const Placement> around, size_t max_places) const;

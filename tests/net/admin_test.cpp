@@ -10,6 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/socket.h>
+#include <netinet/in.h>
+#include <unistd.h>
+
+#include <atomic>
 #include <cstdio>
 #include <future>
 #include <regex>
@@ -155,13 +160,74 @@ TEST(Admin, CommandsChangeTheRunningServer) {
   r.ticks(10);
   EXPECT_GT(r.server.avatar(c.avatar)->tree().num_nodes(), 1) << "the tree regrew under the new strategy";
   EXPECT_EQ(nlohmann::json::parse(r.get("/status")->body)["config"]["strategy"], "breadth-first");
-  // Mistakes are answered, not applied.
-  EXPECT_NE(r.command("set budget-ms lots")->body.find("usage"), std::string::npos);
-  EXPECT_NE(r.command("set strategy greedy")->body.find("greedy"), std::string::npos);
+  // Mistakes are answered with an error status, not applied (issue 19: they came back 200, and
+  // `set budget-ms 8 extra words` applied 8).
+  res = r.command("set budget-ms lots");
+  EXPECT_EQ(res->status, 400);
+  EXPECT_NE(res->body.find("usage"), std::string::npos);
+  res = r.command("set strategy greedy");
+  EXPECT_EQ(res->status, 400);
+  EXPECT_NE(res->body.find("greedy"), std::string::npos);
+  res = r.command("set budget-ms 8 extra words");
+  EXPECT_EQ(res->status, 400);
+  EXPECT_NE(res->body.find("usage"), std::string::npos);
   EXPECT_DOUBLE_EQ(r.server.config().lookahead_budget_ms, 3.5);
-  EXPECT_NE(r.command("launch missiles")->body.find("unknown command"), std::string::npos);
+  res = r.command("launch missiles");
+  EXPECT_EQ(res->status, 404);
+  EXPECT_NE(res->body.find("unknown command"), std::string::npos);
+  EXPECT_EQ(r.command("set warp-drive 9")->status, 404);
   EXPECT_EQ(r.command(std::string(300, 'x'))->status, 400);
   EXPECT_EQ(r.command("")->status, 400);
+}
+
+// Slow-loris: 16 connections that send a request a header line at a time and never finish it
+// (one each 300 ms, inside the per-read timeout) used to hold cpp-httplib's two threads, so
+// /healthz timed out and an orchestrator would restart a healthy server (issue 19). The health
+// checks answer within 100 ms while they are open.
+TEST(Admin, HealthChecksAnswerWhileSlowConnectionsAreOpen) {
+  AdminRun r;
+  r.ticks(2);
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> slow;
+  std::atomic<int> opened{0};
+  for (int i = 0; i < 16; ++i)
+    slow.emplace_back([&, port = r.server.admin_port()] {
+      const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+      sockaddr_in addr{};
+      addr.sin_family = AF_INET;
+      addr.sin_port = htons(static_cast<uint16_t>(port));
+      addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) return;
+      ++opened;
+      const std::string start = "GET /metrics HTTP/1.1\r\nHost: x\r\n";
+      (void)!::send(fd, start.data(), start.size(), MSG_NOSIGNAL);
+      for (int line = 0; !stop; ++line) {
+        std::this_thread::sleep_for(300ms);
+        const std::string header = "X-Slow-" + std::to_string(line) + ": 1\r\n";
+        if (::send(fd, header.data(), header.size(), MSG_NOSIGNAL) < 0) break;
+      }
+      ::close(fd);
+    });
+  std::this_thread::sleep_for(1000ms);  // every slow connection taken by the server and dribbling
+  EXPECT_EQ(opened.load(), 16);
+  for (int i = 0; i < 5; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto c = r.client();
+    c.set_connection_timeout(1, 0);
+    c.set_read_timeout(1, 0);
+    const auto res = c.Get("/healthz");
+    const auto ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_TRUE(res) << "no answer to /healthz with 16 slow connections open";
+    EXPECT_EQ(res->status, 200);
+    EXPECT_LT(ms, 100.0) << "/healthz took " << ms << " ms";
+    r.ticks(1);
+    const auto ready = c.Get("/readyz");
+    ASSERT_TRUE(ready);
+    EXPECT_EQ(ready->status, 200);
+    std::this_thread::sleep_for(100ms);
+  }
+  stop = true;
+  for (std::thread& t : slow) t.join();
 }
 
 TEST(Admin, ReadinessSaysFullAndNotTicking) {

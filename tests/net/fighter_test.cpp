@@ -212,26 +212,35 @@ namespace {
 
 TEST(Fighter, SupervisorCommandsListOrderAndSwitchThePolicy) {
   Arena a(2, /*auto_attack=*/true);
-  const std::string list = a.server.admin_command("fighters");
+  const auto text = [&](const std::string& line) { return a.server.admin_command(line).text; };
+  const auto status = [&](const std::string& line) { return a.server.admin_command(line).status; };
+  const std::string list = text("fighters");
   EXPECT_NE(list.find("2 fighters"), std::string::npos) << list;
   EXPECT_NE(list.find("sparring-partner"), std::string::npos) << list;
   // No player yet: nobody to strike at.
-  EXPECT_NE(a.server.admin_command("order all kick").find("ordered kick to 0 of 2"), std::string::npos);
+  EXPECT_NE(text("order all kick").find("ordered kick to 0 of 2"), std::string::npos);
   RawClient c(a.server.port());
   ASSERT_TRUE(c.connect(a.server, a.now, a.server.library().content_hash));
   uint32_t seq = 1;
   a.ticks(2, c, seq);  // the fighters pick the player as their target
-  EXPECT_NE(a.server.admin_command("order all kick").find("ordered kick to 2 of 2"), std::string::npos);
+  EXPECT_NE(text("order all kick").find("ordered kick to 2 of 2"), std::string::npos);
   const uint32_t id = a.server.fighter_ids().front();
-  EXPECT_NE(a.server.admin_command("order " + std::to_string(id) + " punch").find("to 1 of 1"), std::string::npos);
-  // Bad input gets a clear answer and changes nothing.
-  EXPECT_NE(a.server.admin_command("order 9999 punch").find("no fighter"), std::string::npos);
-  EXPECT_NE(a.server.admin_command("order 1x punch").find("no fighter"), std::string::npos);
-  EXPECT_NE(a.server.admin_command("order all uppercut").find("usage"), std::string::npos);
-  EXPECT_NE(a.server.admin_command("auto maybe").find("usage"), std::string::npos);
-  EXPECT_NE(a.server.admin_command("dance").find("unknown command"), std::string::npos);
-  EXPECT_EQ(a.server.admin_command(""), "");
-  EXPECT_NE(a.server.admin_command("auto off").find("off"), std::string::npos);
+  EXPECT_NE(text("order " + std::to_string(id) + " punch").find("to 1 of 1"), std::string::npos);
+  EXPECT_EQ(status("order all kick"), 200);
+  // Bad input gets a clear answer, a status saying what kind of mistake, and changes nothing.
+  EXPECT_NE(text("order 9999 punch").find("no fighter"), std::string::npos);
+  EXPECT_EQ(status("order 9999 punch"), 404);
+  EXPECT_NE(text("order 1x punch").find("no fighter"), std::string::npos);
+  EXPECT_NE(text("order all uppercut").find("usage"), std::string::npos);
+  EXPECT_EQ(status("order all uppercut"), 400);
+  EXPECT_NE(text("auto maybe").find("usage"), std::string::npos);
+  EXPECT_NE(text("dance").find("unknown command"), std::string::npos);
+  EXPECT_EQ(status("dance"), 404);
+  // A word too many is a mistake, not ignored: the policy stays on.
+  EXPECT_EQ(status("auto off now"), 400);
+  EXPECT_EQ(status("fighters please"), 400);
+  EXPECT_EQ(text(""), "");
+  EXPECT_NE(text("auto off").find("off"), std::string::npos);
   // Queued from another thread, run on the next tick.
   std::thread([q = a.server.admin_queue()] { q->post("order all any"); }).join();
   a.server.run_tick(a.now += 33ms);

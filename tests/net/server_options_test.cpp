@@ -8,6 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <netinet/in.h>
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 
@@ -39,6 +45,39 @@ std::filesystem::path write_file(const std::string& name, const std::string& tex
   std::string error;
   EXPECT_TRUE(file_write_atomic(path, text, error)) << error;
   return path;
+}
+
+// The exit status of the real binary run with `args`, its output discarded.
+int server_exit_code(const std::string& args) {
+  const std::string cmd = std::string(FORESIGHT_BIN_DIR) + "/foresight-server " + args + " > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// docs/SERVER.md "Exit codes": 0 stopped as asked, 1 could not start, 2 a configuration mistake
+// (issue 19: CLI11's own 105-114 came out, and the docs said otherwise).
+TEST(ServerOptions, ExitCodesSayWhatWentWrong) {
+  EXPECT_EQ(server_exit_code("--help"), 0);
+  EXPECT_EQ(server_exit_code("--budget-ms nan"), 2);
+  EXPECT_EQ(server_exit_code("--no-such-option"), 2);
+  EXPECT_EQ(server_exit_code("--port ''"), 2);
+  EXPECT_EQ(server_exit_code("--config /no/such/file.toml"), 2);
+  EXPECT_EQ(server_exit_code("--tick-hz 30 --threshold -5"), 2);
+  // A UDP port another socket holds: the configuration is fine, the start is not.
+  const int held = ::socket(AF_INET, SOCK_DGRAM, 0);
+  ASSERT_GE(held, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(held, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+  socklen_t len = sizeof addr;
+  ASSERT_EQ(::getsockname(held, reinterpret_cast<sockaddr*>(&addr), &len), 0);
+  EXPECT_EQ(server_exit_code("--scene arena --bind 127.0.0.1 --port " + std::to_string(ntohs(addr.sin_port)) +
+                             " --admin-port -1 --seconds 5"),
+            1);
+  ::close(held);
+  EXPECT_EQ(server_exit_code("--scene no-such-scene --admin-port -1 --seconds 5"), 1);
+  EXPECT_EQ(server_exit_code("--scene arena --port 0 --admin-port -1 --seconds 0.3"), 0);
 }
 
 TEST(ServerOptions, TheFileSetsOptionsAndTheCommandLineWins) {
