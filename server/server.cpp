@@ -351,13 +351,22 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
       return;
     default: counters_.drops.add(protocol::DropReason::kUnexpected); return;
   }
-  // A session's message: the sender must be a player; its rate is limited before any decryption.
+  // A session's message: the sender must be a player.
   Player* p = find_player(from);
   if (p == nullptr) {
     counters_.drops.add(protocol::DropReason::kUnexpected);
     return;
   }
-  // Token bucket: max_packets_per_s sustained, one second's worth of burst.
+  protocol::DropReason reason = protocol::DropReason::kNone;
+  const wire::Packet* inner = p->opener.open(*packet.message_as_Sealed(), reason);
+  if (inner == nullptr) {
+    counters_.drops.add(reason);  // forged, corrupted, another session's, or replayed
+    return;
+  }
+  // Token bucket: max_packets_per_s sustained, one second's worth of burst. Charged only for
+  // what the player really sent: charged before opening, datagrams forged with the player's
+  // address spent its allowance and its own inputs were dropped (issue 19). Opening is a few
+  // hundred nanoseconds, and receive() takes a bounded number of datagrams a tick.
   const double rate = config_.max_packets_per_s;
   p->tokens = std::min(rate, p->tokens + rate * std::chrono::duration<double>(now - p->tokens_at).count());
   p->tokens_at = now;
@@ -366,12 +375,6 @@ void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, 
     return;
   }
   p->tokens -= 1.0;
-  protocol::DropReason reason = protocol::DropReason::kNone;
-  const wire::Packet* inner = p->opener.open(*packet.message_as_Sealed(), reason);
-  if (inner == nullptr) {
-    counters_.drops.add(reason);  // forged, corrupted, another session's, or replayed
-    return;
-  }
   handle_session(*p, *inner, now);
 }
 
@@ -413,17 +416,20 @@ void Server::on_connect_request(const protocol::Endpoint& from, const wire::Conn
     counters_.drops.add(protocol::DropReason::kTooSmall);  // unpadded: could amplify
     return;
   }
+  // Every answer to an address not yet proven (a challenge or a refusal) shares one per-tick
+  // budget: refusals of a wrong version were sent before it, 1,000 requests got 1,000 answers,
+  // an uncapped reflector (issue 19).
+  if (challenges_this_tick_ >= config_.max_challenges_per_tick) {
+    ++counters_.challenges_capped;
+    return;
+  }
+  ++challenges_this_tick_;
   if (m.protocol() != protocol::kProtocolVersion) {
     send_refuse(from, wire::RefuseReason::ProtocolVersion,
                 "protocol version " + std::to_string(m.protocol()) + " is not the server's " +
                     std::to_string(protocol::kProtocolVersion) + ": update the client");
     return;
   }
-  if (challenges_this_tick_ >= config_.max_challenges_per_tick) {
-    ++counters_.challenges_capped;
-    return;
-  }
-  ++challenges_this_tick_;
   std::array<uint8_t, 16> storage;
   const auto seconds = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count());
   const protocol::Cookie cookie = cookies_.make(protocol::endpoint_address_bytes(from, storage), from.port(), seconds);

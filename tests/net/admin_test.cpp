@@ -190,8 +190,19 @@ TEST(Admin, HealthChecksAnswerWhileSlowConnectionsAreOpen) {
   std::atomic<bool> stop{false};
   std::vector<std::thread> slow;
   std::atomic<int> opened{0};
+  struct Joiner {  // the slow clients end however the test does (an ASSERT returns early)
+    std::atomic<bool>& stop;
+    std::vector<std::thread>& threads;
+    ~Joiner() {
+      stop = true;
+      for (std::thread& t : threads) t.join();
+    }
+  } joiner{stop, slow};
   for (int i = 0; i < 16; ++i)
-    slow.emplace_back([&, port = r.server.admin_port()] {
+    slow.emplace_back([&, i, port = r.server.admin_port()] {
+      // One after another (cpp-httplib listens with a backlog of 5: a burst of connects waits for
+      // SYN retransmits).
+      std::this_thread::sleep_for(i * 40ms);
       const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
       sockaddr_in addr{};
       addr.sin_family = AF_INET;
@@ -208,8 +219,9 @@ TEST(Admin, HealthChecksAnswerWhileSlowConnectionsAreOpen) {
       }
       ::close(fd);
     });
-  std::this_thread::sleep_for(1000ms);  // every slow connection taken by the server and dribbling
-  EXPECT_EQ(opened.load(), 16);
+  for (int wait = 0; wait < 100 && opened.load() < 16; ++wait) std::this_thread::sleep_for(50ms);
+  std::this_thread::sleep_for(400ms);  // every slow connection taken by the server and dribbling
+  ASSERT_EQ(opened.load(), 16);
   for (int i = 0; i < 5; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     auto c = r.client();
@@ -226,8 +238,6 @@ TEST(Admin, HealthChecksAnswerWhileSlowConnectionsAreOpen) {
     EXPECT_EQ(ready->status, 200);
     std::this_thread::sleep_for(100ms);
   }
-  stop = true;
-  for (std::thread& t : slow) t.join();
 }
 
 TEST(Admin, ReadinessSaysFullAndNotTicking) {

@@ -68,6 +68,39 @@ TEST(SealedSession, ForgedReplayedAndUnsealedInputsAreDropped) {
   EXPECT_EQ(server.num_players(), 1);
 }
 
+// The per-player rate limit counts only what the player really sent: datagrams forged with its
+// address (its own socket stands in for a spoofer here) are dropped as forgeries and do not spend
+// its allowance, so its genuine input still gets through (issue 19: the limit ran before the
+// datagram was opened, and a spoofer could silence a player).
+TEST(SealedSession, ForgeriesFromAPlayersAddressDoNotSpendItsAllowance) {
+  server::ServerConfig config = test::test_server_config("arena");
+  config.max_packets_per_s = 30;
+  server::Server server;
+  std::string error;
+  ASSERT_TRUE(server.start(config, error)) << error;
+  auto now = server::Clock::now();
+  test::RawClient player(server.port());
+  ASSERT_TRUE(player.connect(server, now, server.library().content_hash));
+  const float facing = server.avatar(player.avatar)->root().heading_rad;
+  server.run_tick(now += 1000ms);  // a full bucket
+  protocol::PacketWriter w;
+  const std::vector<uint8_t> junk(64, 0x42);
+  for (uint64_t i = 0; i < 200; ++i) {
+    auto& fbb = w.begin();
+    const auto b = w.finish(wire::CreateSealed(fbb, player.session, 1000 + i, fbb.CreateVector(junk)));
+    player.send_raw(std::vector<uint8_t>(b.begin(), b.end()));
+  }
+  player.send_input(vec2(0.0f, 1.0f), 1, facing);
+  server.run_tick(now += 1ms);
+  EXPECT_EQ(dropped(server, protocol::DropReason::kUnauthenticated), 200u);
+  EXPECT_EQ(dropped(server, protocol::DropReason::kRateLimited), 0u);
+  EXPECT_EQ(server.avatar(player.avatar)->input().camera_dir, vec2(0.0f, 1.0f)) << "the genuine input got through";
+  // Its own flood is still limited: a bucket of 30 and a trickle of refill.
+  for (uint32_t seq = 2; seq < 102; ++seq) player.send_input(vec2(0.0f, 1.0f), seq, facing);
+  server.run_tick(now += 1ms);
+  EXPECT_GE(dropped(server, protocol::DropReason::kRateLimited), 65u);
+}
+
 TEST(SealedSession, EachSessionHasItsOwnKeysAndSnapshotsAreSealed) {
   server::Server server;
   std::string error;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <random>
 
 namespace foresight {
@@ -185,6 +187,38 @@ TEST(Server, UnpaddedConnectsAndForgedCookiesGetNothing) {
   protocol::DropReason reason;
   EXPECT_EQ(protocol::packet_read(*refuse, reason)->message_as_Refuse()->reason(), wire::RefuseReason::BadCookie);
   EXPECT_EQ(r.server.num_players(), 0);
+}
+
+// Refusals of a wrong protocol version go to an address nobody has proven, like challenges: they
+// share the per-tick cap, so a flood of them from spoofed addresses is not reflected in full
+// (issue 19: 1,000 requests got 1,000 answers).
+TEST(Server, WrongVersionRefusalsShareTheCapOnAnswersToUnprovenAddresses) {
+  server::ServerConfig config = test::test_server_config("arena");
+  config.max_challenges_per_tick = 8;
+  server::Server server;
+  std::string error;
+  ASSERT_TRUE(server.start(config, error)) << error;
+  RawClient c(server.port());
+  protocol::PacketWriter w;
+  const std::array<uint8_t, protocol::kMinConnectRequestBytes> padding{};
+  for (int i = 0; i < 100; ++i) {
+    auto& fbb = w.begin();
+    c.send(w.finish(wire::CreateConnectRequest(fbb, protocol::kProtocolVersion + 1, server.library().content_hash,
+                                               fbb.CreateString("old"), fbb.CreateVector(padding.data(), padding.size()))));
+  }
+  auto now = server::Clock::now();
+  server.run_tick(now += 33ms);
+  int refusals = 0;
+  for (const auto& d : c.receive_all()) {
+    protocol::DropReason reason;
+    const wire::Packet* p = protocol::packet_read(d, reason);
+    if (p != nullptr && p->message_as_Refuse() != nullptr) {
+      EXPECT_EQ(p->message_as_Refuse()->reason(), wire::RefuseReason::ProtocolVersion);
+      ++refusals;
+    }
+  }
+  EXPECT_EQ(refusals, 8) << "one tick's cap, not one answer per request";
+  EXPECT_EQ(server.counters().challenges_capped, 92u);
 }
 
 TEST(Server, ASilentClientIsTimedOutAndItsAvatarRemoved) {
