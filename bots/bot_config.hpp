@@ -38,9 +38,10 @@ struct BotFleetConfig {
   std::string scene_path;
   /// Two avatars whose roots are closer than this count as a contact.
   float contact_distance_m = 0.3f;
-  /// A bot whose server went away (shut down, or silent) connects again after a back-off that
-  /// doubles from reconnect_first_s up to reconnect_max_s (each bot's delay jittered by +-25 %,
-  /// so a restarted server is not hit by every bot at once). false: it stays gone.
+  /// A bot whose server went away (shut down, or silent), or whose handshake got no answer in
+  /// time, connects again after a back-off that doubles from reconnect_first_s up to
+  /// reconnect_max_s (each bot's delay jittered by +-25 %, so a restarted server is not hit by
+  /// every bot at once). false: it stays gone. A refusal is final.
   bool reconnect = true;
   /// Churn (soak tests): every churn_every_s one bot (in turn) leaves (Disconnect) and joins again
   /// as a new session half a second later. 0: none.

@@ -235,7 +235,9 @@ void BotFleet::on_state_change(Bot& bot, int index, TimePoint now) {
     case ClientState::kTimedOut:
     case ClientState::kServerGone:
       log_once(bot.conn.status_message());
-      if (bot.accepted && config_.reconnect) schedule_reconnect(bot, index, now);
+      // Never accepted too: a handshake lost to a hostile link is tried again, with the same
+      // back-off (issue 19: such a bot never tried again).
+      if (config_.reconnect) schedule_reconnect(bot, index, now);
       break;
     default:
       break;

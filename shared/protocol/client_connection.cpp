@@ -89,6 +89,7 @@ bool ClientConnection::start(const Endpoint& server, uint64_t library_hash, std:
   name_ = std::move(name);
   cookie_size_ = 0;
   started_at_ = handshake_since_ = now;
+  handshake_timeout_ = config_.handshake_timeout;
   accepted_at_ = last_heard_ = now;
   accept_ = {};
   refuse_ = {};
@@ -253,6 +254,15 @@ void ClientConnection::on_challenge(const wire::Challenge& m, TimePoint now) {
   // Repeats of the same Challenge (one per resent ConnectRequest) change nothing.
   if (cookie_size_ == cookie->size() && std::equal(cookie->begin(), cookie->end(), cookie_.begin())) {
     return;
+  }
+  // The first challenge measures the round trip (at most: the first request may have been lost):
+  // the rest of the handshake gets four of them, and never less than handshake_timeout. Over a
+  // link with a second of latency each way the handshake needs two round trips, more than a
+  // fixed 5 s allows once a packet is lost (issue 19).
+  if (cookie_size_ == 0) {
+    const auto rtt = std::chrono::duration_cast<std::chrono::milliseconds>(now - started_at_);
+    handshake_timeout_ = std::max(config_.handshake_timeout, 4 * rtt);
+    handshake_since_ = now;
   }
   std::copy(cookie->begin(), cookie->end(), cookie_.begin());
   cookie_size_ = cookie->size();
@@ -501,10 +511,10 @@ void ClientConnection::release_sends(TimePoint now) {
 
 void ClientConnection::flush_messages(TimePoint now) {
   if (state_ == ClientState::kConnecting) {
-    if (now - handshake_since_ >= config_.handshake_timeout) {
+    if (now - handshake_since_ >= handshake_timeout_) {
       set_state(ClientState::kTimedOut,
                 "no answer from " + endpoint_text(server_) + " within " +
-                    std::to_string(config_.handshake_timeout.count()) + " ms" +
+                    std::to_string(handshake_timeout_.count()) + " ms" +
                     (cookie_size_ ? " after its challenge" : " (is the server running?)"));
       return;
     }

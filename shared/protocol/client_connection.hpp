@@ -48,7 +48,9 @@ const char* client_state_name(ClientState state);
 
 struct ClientConfig {
   std::chrono::milliseconds handshake_resend{250};
-  std::chrono::milliseconds handshake_timeout{5000};  ///< From start() (or the last "queued") to Accept / Refuse.
+  /// From start() to the first Challenge, then from it (or the last "queued") to Accept / Refuse;
+  /// after the first Challenge at least four round trips as it measured them.
+  std::chrono::milliseconds handshake_timeout{5000};
   std::chrono::milliseconds server_timeout{5000};     ///< Silence after which the server is gone.
   std::chrono::milliseconds heartbeat_interval{1000}; ///< While idle (nothing new to send).
   /// Least time between two Inputs (0: one per flush()). For clients that render faster than
@@ -294,7 +296,9 @@ class ClientConnection {
   uint32_t sequence_ = 0;
   uint32_t ack_input_ = 0;
   uint32_t payload_since_ = 0;  ///< Sequence of the first command holding the current input.
-  TimePoint handshake_since_{};  ///< start(), or the server's latest "queued": the timeout runs from it.
+  TimePoint handshake_since_{};  ///< start(), the first challenge, or the server's latest "queued": the timeout runs from it.
+  /// config_.handshake_timeout, or four round trips as the first challenge measured them if longer.
+  std::chrono::milliseconds handshake_timeout_{5000};
   TimePoint last_input_sent_{};
   TimePoint last_packet_sent_{};
 

@@ -39,6 +39,27 @@ TEST(Impairment, GoalSeekersStillArriveWithoutCollisions) {
   EXPECT_GT(r.rtt_ms.percentile(0.5), 90.0);
 }
 
+// A second and a half of latency each way with a quarter of the datagrams lost, duplicated or
+// reordered: the handshake's two round trips take over 6 s, more than the fixed 5 s timeout
+// allowed, and a bot whose handshake timed out never tried again (issue 19). Now the timeout
+// scales with the round trip the first challenge measured, and a timed-out bot retries.
+TEST(Impairment, HandshakesSurviveSecondsOfLatencyAndLoss) {
+  test::BotMatch m(test::test_server_config("arena"), 4, bots::BotScript::kWander, 5);
+  m.config.impairment.loss = 0.25;
+  m.config.impairment.latency_ms = 1500;
+  m.config.impairment.jitter_ms = 100;
+  m.config.impairment.duplicate = 0.25;
+  m.config.impairment.reorder = 0.25;
+  m.config.impairment.seed = 19;
+  bots::BotFleet fleet(m.server.library(), m.config);
+  ASSERT_TRUE(fleet.ok()) << fleet.error();
+  m.play(fleet, 30 * 30);
+  const bots::BotReport r = fleet.report(m.now);
+  fleet.disconnect_all();
+  EXPECT_EQ(r.connected_at_end, 4);
+  EXPECT_EQ(m.server.num_players(), 4);
+}
+
 TEST(Impairment, TheNewestCommandAlwaysArrivesAndTheServerEndsInTheSameState) {
   // The same command script played twice: over a clean link, and over the hostile one. Commands
   // change every 1-6 frames (faster than the round trip), then the last one is held, then "stop".
