@@ -32,7 +32,7 @@ struct BotFleetConfig {
   int plans_per_frame = 16;           ///< Route plans (A*) per frame over all bots.
   float dodge_radius_m = 2.0f;        ///< dodge: run from a fighter this close (twice as far when it strikes).
   double give_up_target_s = 60;       ///< A target not reached in this time is replaced.
-  double stats_wait_s = 1.0;          ///< How long the end waits for the ServerStats answer.
+  double stats_wait_s = 1.0;          ///< How long the end waits for the ServerStats answer (at least 3 round trips).
   /// --scene PATH: our copy of the server's scene file (used when its hash is the server's; else,
   /// as when empty and data/scenes/ has no such scene, the server's file is fetched).
   std::string scene_path;

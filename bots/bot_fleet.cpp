@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <thread>
@@ -468,8 +469,12 @@ BotReport bot_fleet_run(const MotionLibrary& library, const BotFleetConfig& conf
 
   // The server's own figures, then goodbye.
   if (fleet.connected_now() > 0) {
+    // At least three round trips as measured: over a link with a second of latency each way the
+    // answer to a request takes two seconds (issue 19's soak got none in one).
+    const double rtt_s = fleet.report(Clock::now()).rtt_ms.percentile(0.99) / 1000.0;
+    const double wait_s = std::max(config.stats_wait_s, std::isfinite(rtt_s) ? 3.0 * rtt_s : 0.0);
     const Clock::time_point stats_deadline =
-        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config.stats_wait_s));
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(wait_s));
     // Asked again every 250 ms: on a lossy link the request or its answer may be lost.
     Clock::time_point next_request = Clock::now();
     while (!fleet.stats_arrived() && fleet.connected_now() > 0 && Clock::now() < stats_deadline) {
