@@ -183,6 +183,11 @@ void PoseStage::inertialize(float dt_s) {
   const float w = decay(offset_left_s_, config_.inertialize_s);
   if (w <= 0.0f) return;
   for (size_t j = 0; j < shown_.size(); ++j) shown_[j] += w * offset_[j];
+  // Each joint's offset is its own: the legs get their bones' lengths back by IK to where the
+  // offset ankles are (measured: without it a fallback on the Bandai capture showed a shin 7 cm
+  // short for a few frames).
+  if (library_.num_joints() > kCanonRightToeEnd)
+    for (int foot = 0; foot < 2; ++foot) reach(foot, vec3(0.0f));
 }
 
 void PoseStage::lock_foot(int foot, float dt_s) {
@@ -227,12 +232,16 @@ void PoseStage::lock_foot(int foot, float dt_s) {
 // Moves the foot by `offset` (ankle and everything below it) and bends the leg to reach it: the
 // knee stays in the plane of hip, new ankle and the animated knee, at the bone lengths.
 void PoseStage::reach(int foot, vec3 offset) {
-  if (glm::dot(offset, offset) < 1e-10f) return;
   const size_t hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
   const size_t knee = hip + 1, ankle = hip + 2;
   const vec3 h = shown_[hip], k = shown_[knee], a = shown_[ankle];
-  const float upper = glm::length(k - h), lower = glm::length(a - k);
+  // The animation's bone lengths, not the shown ones: an inertialized jump offsets every joint by
+  // its own amount, which stretches or shrinks the shown bones until it has decayed.
+  const float upper = glm::length(animated_[knee] - animated_[hip]), lower = glm::length(animated_[ankle] - animated_[knee]);
   if (upper < 1e-4f || lower < 1e-4f) return;
+  if (glm::dot(offset, offset) < 1e-10f && std::abs(glm::length(k - h) - upper) < 1e-4f &&
+      std::abs(glm::length(a - k) - lower) < 1e-4f)
+    return;
   vec3 target = a + offset;
   vec3 to = target - h;
   float d = glm::length(to);

@@ -136,6 +136,35 @@ TEST(PoseStage, AJumpIsInertializedNotShown) {
   EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
 }
 
+// A jump into another pose (an idle stand to mid-stride somewhere else, as a correction or a
+// fallback may be) gives every joint its own decaying offset; the legs keep their bones' lengths
+// all the while (without solving them again a shin was shown 7 cm short).
+TEST(PoseStage, AnInertializedJumpKeepsTheLegsBones) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle"), walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(idle, 0);
+  ASSERT_GE(walk, 0);
+  PoseStage stage(lib);
+  PlaybackState s{idle, 0, Placement{}, -1};
+  stage.update(s, 0.0f);
+  const Leg rest = leg(stage.animated(), kCanonLeftUpLeg);
+  s = PlaybackState{walk, lib.graph.segments[walk].num_frames() / 2, Placement{vec2(0.6f, 0.3f), 1.2f}, -1};
+  float worst = 0.0f, moved = 0.0f;
+  std::vector<vec3> before(stage.shown().begin(), stage.shown().end());
+  for (int f = 0; f < 6 && s.frame < lib.graph.segments[walk].num_frames(); ++f, ++s.frame) {
+    const std::span<const vec3> shown = stage.update(s, 1.0f / 30.0f);
+    for (const int hip : {kCanonLeftUpLeg, kCanonRightUpLeg}) {
+      const Leg now = leg(shown, hip), played = leg(stage.animated(), hip);
+      worst = std::max({worst, std::abs(now.upper - played.upper), std::abs(now.lower - played.lower)});
+    }
+    if (f == 0) moved = test::max_distance(std::vector<vec3>(shown.begin(), shown.end()), before);
+  }
+  EXPECT_EQ(stage.discontinuities(), 1);
+  EXPECT_LT(moved, 0.25f) << "the jump is not shown at once";
+  EXPECT_LT(worst, 1e-3f) << "a leg bone changed length by " << worst << " m";
+  EXPECT_NEAR(rest.upper, leg(stage.animated(), kCanonLeftUpLeg).upper, 1e-3f);
+}
+
 // The steering's turn (a walking segment's start rotated 18 deg in one frame, as 540 deg/s
 // does) is shown eased: less than that on the frame, all of it a few frames later.
 TEST(PoseStage, TheSteeringTurnIsEased) {
