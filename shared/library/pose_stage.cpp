@@ -27,8 +27,9 @@ void spring_towards(float& x, float& v, float target, float k, float dt) {
   v = (v - k * (v + k * d) * dt) * e;
 }
 
-// Orientation warping's share of the turn lag per canonical joint: none for the pelvis and legs,
-// growing up the spine, all of it from the chest up (arms and head included).
+// Orientation warping: how much of a canonical joint's turn lag is the upper body's spring's (the
+// rest the lower body's): none for the pelvis and legs, growing up the spine, all of it from the
+// chest up (arms and head included).
 float upper_body_share(int joint) {
   if (joint == kCanonHips || joint >= kCanonLeftUpLeg) return 0.0f;
   if (joint == kCanonSpine) return 1.0f / 3.0f;
