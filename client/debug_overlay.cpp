@@ -158,7 +158,10 @@ void DebugOverlay::frame(protocol::ClientConnection& connection, double t_s, boo
   const protocol::AcceptInfo& accept = connection.accept();
   if (!connected) {
     meter_.reset();
-  } else if (t_s >= next_sample_s_) {
+  } else if (connection.has_snapshot() && t_s >= next_sample_s_) {
+    // From the first snapshot on: a sample taken before it (number 0) anchored the window at 0
+    // while snapshots are numbered since the server started, and a session's first seconds read
+    // as a third of the snapshots lost ("link poor") on a perfect link.
     meter_.add({t_s, connection.snapshot_tick(), connection.snapshot_ticks(), connection.bytes_received(),
                 connection.bytes_sent()});
     next_sample_s_ = t_s + kSampleIntervalS;
