@@ -192,11 +192,11 @@ void ClientConnection::handle(const wire::Packet& packet, TimePoint now, bool se
         on_accept(*packet.message_as_Accept(), now);
         return;
       }
-      // The server answers each resent ConnectResponse: later copies of our Accept are harmless.
-      if (connected && packet.message_as_Accept()->session() == accept_.session) {
-        last_heard_ = now;
-        return;
-      }
+      // The server answers each resent ConnectResponse: later copies of our Accept are harmless,
+      // and are not taken as hearing from the server: they travel in the clear and session ids
+      // are small sequential numbers, so anyone able to send from the server's address could
+      // keep a client from noticing its server is gone. Only sealed messages count.
+      if (connected && packet.message_as_Accept()->session() == accept_.session) return;
       break;
     case wire::Message::Refuse:
       if (connecting && packet.message_as_Refuse()->reason() == wire::RefuseReason::Queued) {

@@ -377,6 +377,19 @@ TEST_F(ClientConnectionTest, SilentServerIsGoneAfterFiveSeconds) {
   EXPECT_EQ(client_.state(), ClientState::kServerGone);
 }
 
+// Copies of the Accept travel in the clear: once connected they are not taken as hearing from
+// the server, or anyone sending them from its address (the session id is guessable) would keep
+// the client from noticing that its server is gone.
+TEST_F(ClientConnectionTest, AcceptsInTheClearDoNotKeepAGoneServerAlive) {
+  connect();
+  for (int ms = 500; ms <= 6000; ms += 500) {
+    server_.send_accept(5, 3);
+    deliver(client_, at(ms));
+    client_.update(at(ms));
+  }
+  EXPECT_EQ(client_.state(), ClientState::kServerGone);
+}
+
 TEST_F(ClientConnectionTest, UnsealedOrForgedServerMessagesAreDroppedOnceConnected) {
   connect();
   // A snapshot not sealed with the session's key: anyone on the way could have sent it.
