@@ -133,9 +133,10 @@ void MotionTree::set_command(vec2 world_direction, const Placement& avatar, bool
   const vec2 command = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
   // The same command from the same place matches every node as it does now (the server re-sorts
   // periodically; a standing avatar's full tree would be walked twice for nothing).
-  if (!priorities_stale_ && crouch == crouch_ && command == command_ && avatar.pos_m == avatar_.pos_m &&
-      avatar.heading_rad == avatar_.heading_rad)
+  if (matches_current_ && !priorities_stale_ && crouch == crouch_ && command == command_ &&
+      avatar.pos_m == avatar_.pos_m && avatar.heading_rad == avatar_.heading_rad)
     return;
+  matches_current_ = true;
   crouch_ = crouch;
   command_ = command;
   avatar_ = avatar;

@@ -140,7 +140,10 @@ class MotionTree {
   }
 
   /// Strategy 3 and 4 priorities (learned elsewhere). Without them both fall back to uniform.
-  void set_statistics(TransitionStatistics statistics) { statistics_ = std::move(statistics); }
+  void set_statistics(TransitionStatistics statistics) {
+    statistics_ = std::move(statistics);
+    matches_current_ = false;  // the next set_command() re-prioritises, even with the same command
+  }
 
   /// Grows best-first until the budget is spent, the pool is full or nothing is left to expand.
   GrowResult grow(const GrowBudget& budget);
@@ -236,6 +239,8 @@ class MotionTree {
   std::vector<std::pair<int, int>> branch_stack_;  ///< refresh_priorities' walk: node, root_sums_ slot.
   int root_ = -1;
   bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
+  /// set_command() may skip re-prioritising a repeat of the same command and placement.
+  bool matches_current_ = false;
   uint32_t next_order_ = 0;
   static constexpr float kWalkingPace_mps = 1.2f;  // at or above it a motion gets full pace credit
   vec2 command_{0.0f};
