@@ -286,7 +286,7 @@ std::span<const int> MotionTree::ranked_children() {
   // summed as the nodes come (grow) and all again whenever every match or depth changes
   // (refresh_priorities): ranking is then a sort of the root's few children, every frame.
   update_priorities_if_stale();
-  if (!sums_valid_) refresh_priorities();
+  assert(sums_valid_ && "only advance_root() invalidates them, and it leaves the priorities stale");
   ranked_.clear();
   for (const RootChildSum& r : root_sums_) ranked_.push_back({r.sum, order_[static_cast<size_t>(r.node)], r.node});
   std::sort(ranked_.begin(), ranked_.end(), [](const RankedChild& a, const RankedChild& b) {

@@ -11,21 +11,30 @@
 namespace foresight::lab {
 namespace {
 
-TEST(MotionQuality, ThePoseStageKeepsSteeredFeetPlantedAndChangesNothingElse) {
-  MotionLibrary lib = motion_library_default();
+// The three controllers' results on `scene_name`'s first spawn to its first goal, player seeds
+// 1..seeds, at most 60 s each.
+std::vector<MotionQualityResult> measure(const char* scene_name, int seeds) {
+  const MotionLibrary lib = motion_library_default();
   Scene scene;
   CollisionWorld world;
   std::string error;
-  ASSERT_TRUE(scene_world_load("maze", scene, world, error)) << error;
+  EXPECT_TRUE(scene_world_load(scene_name, scene, world, error)) << error;
   MotionQualityOptions options;
-  options.seeds = 1;
+  options.seeds = seeds;
   options.max_seconds = 60;
+  std::vector<MotionQualityResult> r =
+      measure_motion_quality(lib, scene, world, motion_quality_controllers(9.424778f), options, error);
+  EXPECT_EQ(r.size(), 3u) << error;
+  return r;
+}
+
+TEST(MotionQuality, ThePoseStageKeepsSteeredFeetPlantedAndChangesNothingElse) {
   const auto controllers = motion_quality_controllers(9.424778f);
   ASSERT_EQ(controllers.size(), 3u);
   ASSERT_FALSE(controllers[1].pose_stage);
   ASSERT_TRUE(controllers[2].pose_stage);
-  const std::vector<MotionQualityResult> r = measure_motion_quality(lib, scene, world, controllers, options, error);
-  ASSERT_EQ(r.size(), 3u) << error;
+  const std::vector<MotionQualityResult> r = measure("maze", 1);
+  ASSERT_EQ(r.size(), 3u);
   const MotionQualityResult& raw = r[1];
   const MotionQualityResult& staged = r[2];
   EXPECT_GT(raw.contact_samples, 300);
@@ -43,17 +52,8 @@ TEST(MotionQuality, ThePoseStageKeepsSteeredFeetPlantedAndChangesNothingElse) {
 // rolling slopes): flat-ground clips shown by the stage keep their planted feet on the ground
 // under them, where the raw playback floats or sinks by the step's height.
 TEST(MotionQuality, OnUnevenGroundThePlantedFeetAreOnTheGround) {
-  MotionLibrary lib = motion_library_default();
-  Scene scene;
-  CollisionWorld world;
-  std::string error;
-  ASSERT_TRUE(scene_world_load("terrain", scene, world, error)) << error;
-  MotionQualityOptions options;
-  options.seeds = 2;
-  options.max_seconds = 60;
-  const std::vector<MotionQualityResult> r =
-      measure_motion_quality(lib, scene, world, motion_quality_controllers(9.424778f), options, error);
-  ASSERT_EQ(r.size(), 3u) << error;
+  const std::vector<MotionQualityResult> r = measure("terrain", 2);
+  ASSERT_EQ(r.size(), 3u);
   const MotionQualityResult& raw = r[1];
   const MotionQualityResult& staged = r[2];
   EXPECT_GT(raw.ground_error_cm_max, 15.0) << "the route crosses the steps: raw feet are off the ground there";

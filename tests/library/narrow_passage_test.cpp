@@ -1,10 +1,8 @@
 // The default library's bodies fit the passages real levels have (issue 17): a walk passes a
 // 0.8 m gap between pillars, a crouch walk the 1.0 m corridor under 1.2 m beams, where a walk
 // does not; every frame checked against the shipped scenes.
+#include "foreign_capture.hpp"
 #include "library/library_source.hpp"
-#include "anim/bvh.hpp"
-#include "support/bvh_variants.hpp"
-#include "support/test_paths.hpp"
 #include "world/collision_check.hpp"
 #include "world/data_paths.hpp"
 
@@ -54,17 +52,9 @@ TEST(NarrowPassages, AWalkPassesAGapOfEightyCentimetresAndACrouchWalkGoesUnderTh
 // hint), still walks straight through the 0.8 m pillar gap, every frame checked.
 TEST(NarrowPassages, ACapturedWalkOfAnotherUnitAndRootPassesTheGap) {
   FORESIGHT_REQUIRE_MOCAP();
-  BvhDocument take;
-  std::string error;
-  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", take, error)) << error;
-  test::scale_document(take, 1.0f / 2.54f);
-  test::insert_parent(take, 0, "Reference", 0.0f);
-  const auto dir = test::scratch_dir();
-  ASSERT_TRUE(bvh_save(dir / "walk_in_inches.bvh", take, error)) << error;
-  MotionSource source;
-  source.motions_dir = dir;
   MotionLibrary lib;
-  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_walk_library("", lib));
+  std::string error;
   Scene scene;
   CollisionWorld pillars;
   ASSERT_TRUE(scene_world_load("pillars", scene, pillars, error)) << error;

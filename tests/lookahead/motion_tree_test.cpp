@@ -259,16 +259,13 @@ TEST(MotionTree, KeptBranchSumsRankAsAFreshWalkOfTheTreeDoes) {
     return order;
   };
   const vec2 commands[] = {{0, 1}, {1, 0}, {-1, 1}, {0, -1}};
-  int checks = 0;
   for (int step = 0; step < 24; ++step) {
     if (step % 6 == 0) t.set_command(commands[(step / 6) % 4], t.node(t.root()).start, false);
     t.grow(GrowBudget::expansions(40));
     const std::span<const int> kept = t.ranked_children();
     ASSERT_EQ(std::vector<int>(kept.begin(), kept.end()), fresh_ranking()) << "step " << step;
-    ++checks;
     if (step % 4 == 3 && !kept.empty()) t.advance_root(kept.front());
   }
-  EXPECT_EQ(checks, 24);
   EXPECT_GT(t.num_nodes(), 50);
 }
 
