@@ -16,7 +16,15 @@ struct FollowCameraConfig {
   float target_height_m = 1.0f;  ///< Looks at this point above the avatar's root.
   float fov_y_rad = 1.0f;
   float turn_rate = 3.0f;        ///< Heading follow speed (1/s); high: snappier.
+  /// A wall between the avatar and the camera pulls the camera in front of it at once (this far
+  /// before the wall); once the way is clear the camera eases back out at this rate (1/s).
+  float wall_margin_m = 0.25f;
+  float ease_out_rate = 4.0f;
 };
+
+/// Where the segment from `from` to `to` first enters one of the scene's boxes, as a fraction
+/// of its length (1: it enters none). Boxes holding `from` do not count.
+float first_box_hit(const Scene& scene, vec3 from, vec3 to);
 
 class CameraRig {
  public:
@@ -45,6 +53,7 @@ class CameraRig {
   bool follow_ = false;
   bool follow_placed_ = false;  ///< The follow heading has been set (snap on first use).
   float follow_heading_ = 0.0f;
+  float arm_m_ = 0.0f;  ///< Target-to-eye distance now (shortened in front of walls).
   int designer_ = -1;
   vec3 eye_{0.0f, 5.0f, -5.0f};
   vec3 target_{0.0f};

@@ -74,6 +74,44 @@ TEST(CameraRig, FollowCameraSitsBehindTheAvatar) {
   EXPECT_FALSE(rig.following());
 }
 
+// A wall behind the avatar: the follow camera comes in front of it at once (the player is never
+// seen through a wall), and eases back out once the avatar has walked away from it.
+TEST(CameraRig, FollowCameraStaysOnTheAvatarsSideOfAWall) {
+  Scene scene;
+  SceneBox wall;
+  wall.min_m = vec3(-5, 0, -2.2f);
+  wall.max_m = vec3(5, 3, -2.0f);  // 2 m behind an avatar at the origin facing +z
+  scene.boxes = {wall};
+  CameraRig rig(&scene);
+  rig.update(vec2(0, 0), 0.0f, 0.016f);
+  ASSERT_TRUE(rig.following());
+  EXPECT_GT(rig.eye_m().z, -2.0f) << "the camera is behind the wall";
+  EXPECT_LT(rig.eye_m().z, -1.0f) << "the camera came further in than the wall asks";
+  EXPECT_EQ(first_box_hit(scene, rig.target_m(), rig.eye_m()), 1.0f);
+  // Walk 5 m away from the wall: the camera eases back to its full distance, not at once.
+  rig.update(vec2(0, 5), 0.0f, 0.016f);
+  const float just_after = glm::length(ground(rig.eye_m()) - vec2(0, 5));
+  for (int i = 0; i < 120; ++i) rig.update(vec2(0, 5), 0.0f, 0.016f);
+  const float later = glm::length(ground(rig.eye_m()) - vec2(0, 5));
+  EXPECT_LT(just_after, 3.5f);
+  EXPECT_NEAR(later, FollowCameraConfig{}.distance_m, 0.05f);
+}
+
+TEST(CameraRig, FirstBoxHitFindsTheNearestBoxAndIgnoresOnesHoldingTheStart) {
+  Scene scene;
+  SceneBox near, far, around;
+  near.min_m = vec3(2, -1, -1);
+  near.max_m = vec3(3, 1, 1);
+  far.min_m = vec3(6, -1, -1);
+  far.max_m = vec3(7, 1, 1);
+  around.min_m = vec3(-1, -1, -1);
+  around.max_m = vec3(1, 1, 1);  // holds the start
+  scene.boxes = {far, around, near};
+  EXPECT_NEAR(first_box_hit(scene, vec3(0), vec3(10, 0, 0)), 0.2f, 1e-6);
+  EXPECT_EQ(first_box_hit(scene, vec3(0), vec3(1.5f, 0, 0)), 1.0f);    // stops short
+  EXPECT_EQ(first_box_hit(scene, vec3(0, 2, 0), vec3(10, 2, 0)), 1.0f);  // passes above
+}
+
 TEST(CameraRig, NoDesignerCamerasMeansFollow) {
   const Scene scene;
   CameraRig rig(&scene);

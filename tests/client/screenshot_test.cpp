@@ -10,18 +10,22 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
 using namespace foresight::test;
 
 // One run of the client against a maze server with `bots` bots, in this test's scratch folder.
-void run_client_screenshot(const std::string& name, const std::string& client_args, Image& img, int bots = 3) {
+void run_client_screenshot(const std::string& name, const std::string& client_args, Image& img, int bots = 3,
+                           std::vector<std::string> server_args = {}) {
   ClientRun run;
   run.dir = scratch_dir();
   run.name = name;
   run.client_args = client_args;
   run.bots = bots;
+  run.server_args = std::move(server_args);
   foresight::test::run_client_screenshot(run, img);
 }
 
@@ -119,9 +123,12 @@ TEST(ClientScreenshot, TheTreeOverlayDrawsTheTreeAndItsChosenBranch) {
                               " --screenshot-at-s 3";
   // No bots: one that walks between the camera and the player hides the tree's lines on the
   // floor (it did in CI), and the player's own tree does not depend on them.
+  // A fixed number of expansions a tick, not a time budget: on a loaded machine (CI runs tests
+  // side by side) a time budget grew a bare chain, so no unchosen line was left to see.
+  const std::vector<std::string> fixed_growth = {"--expansions", "300"};
   Image plain, overlay;
-  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("tree-off", walking, plain, 0));
-  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("tree-overlay", walking + " --tree-overlay", overlay, 0));
+  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("tree-off", walking, plain, 0, fixed_growth));
+  ASSERT_NO_FATAL_FAILURE(run_client_screenshot("tree-overlay", walking + " --tree-overlay", overlay, 0, fixed_growth));
   // The overlay's unlit colours (tree_overlay.hpp): cyan (0.10, 0.85, 0.85) for the tree, yellow
   // (1.00, 0.95, 0.10) for the chosen branch. Without the overlay neither appears.
   static_assert(foresight::client::kTreeColour.y == 0.85f && foresight::client::kChosenColour.z == 0.10f);
