@@ -36,11 +36,12 @@ int main(int argc, char** argv) {
   const std::array<wire::InputCommand, 2> commands{input_command_from(in, 7), input_command_from({}, 8)};
   save(write_input(w, 1, 3, 1000, commands));
   // Avatar 1 coded against the fuzz history's snapshot 1 (this is snapshot 2), 9 whole.
-  const protocol::AvatarHistory history = fuzz::fuzz_history();
+  protocol::WholeViewSender sender;
+  fuzz::fuzz_sent(sender);
   const std::array<wire::AvatarState, 2> avatars{wire::AvatarState(1, 100, 200, -1, 3, 500, 4, 0, 0),
                                                 wire::AvatarState(9, 0, 0, -1, 0xFFFF, 0, 0, 16, 0)};
   protocol::AvatarDeltaEncoder encoder;
-  encoder.plan(avatars, 2, 3, history);
+  sender.plan(encoder, avatars, 2, 3);
   std::vector<uint8_t> packed;
   encoder.write_part(0, avatars.size(), packed);
   auto& fbb = w.begin();

@@ -6,6 +6,8 @@
 
 #include <cstdio>
 
+#include <unistd.h>
+
 namespace foresight::server {
 
 namespace {
@@ -17,6 +19,15 @@ void line(std::string& out, const char* name, const char* type, const char* help
 }
 
 }  // namespace
+
+uint64_t resident_memory_bytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  unsigned long long pages_total = 0, pages_resident = 0;
+  const int read = std::fscanf(f, "%llu %llu", &pages_total, &pages_resident);
+  std::fclose(f);
+  return read == 2 ? pages_resident * static_cast<uint64_t>(sysconf(_SC_PAGESIZE)) : 0;
+}
 
 std::string admin_metrics_prometheus(const AdminMetrics& m) {
   std::string out;
@@ -84,6 +95,13 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_fighter_strikes_total", "counter", "Fighters' strikes judged.", static_cast<double>(m.fighter_strikes));
   line(out, "foresight_fighter_hits_total", "counter", "Fighters' strikes that hit.", static_cast<double>(m.fighter_hits));
   line(out, "foresight_uptime_seconds", "gauge", "Since the server started.", m.uptime_s);
+  line(out, "process_resident_memory_bytes", "gauge", "Resident memory size in bytes.",
+       static_cast<double>(m.memory.resident_bytes));
+  line(out, "foresight_tree_node_bytes", "gauge", "Node storage of every motion tree (grows with the nodes the budget pays for).",
+       static_cast<double>(m.memory.tree_node_bytes));
+  line(out, "foresight_snapshot_history_bytes", "gauge",
+       "Snapshot history for delta coding: the shared archive and every client's sent views.",
+       static_cast<double>(m.memory.snapshot_history_bytes));
   return out;
 }
 
@@ -119,6 +137,9 @@ std::string admin_metrics_json(const AdminMetrics& m) {
       {"avatar_contacts", m.avatar_contacts},
       {"fighter_strikes", m.fighter_strikes},
       {"fighter_hits", m.fighter_hits},
+      {"memory", {{"resident_bytes", m.memory.resident_bytes},
+                  {"tree_node_bytes", m.memory.tree_node_bytes},
+                  {"snapshot_history_bytes", m.memory.snapshot_history_bytes}}},
   };
   return j.dump();
 }

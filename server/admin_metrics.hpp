@@ -14,6 +14,16 @@ namespace foresight::server {
 
 struct ServerCounters;
 
+/// What the server holds in memory (refreshed once a second).
+struct MemoryFigures {
+  uint64_t resident_bytes = 0;          ///< The process's resident set (/proc/self/statm).
+  uint64_t tree_node_bytes = 0;         ///< Every motion tree's node storage (it grows with the work).
+  uint64_t snapshot_history_bytes = 0;  ///< The snapshot archive and every client's sent views.
+};
+
+/// The process's resident set in bytes (0 where /proc is not there).
+uint64_t resident_memory_bytes();
+
 struct AdminMetrics {
   uint32_t tick = 0;
   double uptime_s = 0;
@@ -38,6 +48,7 @@ struct AdminMetrics {
   uint64_t terrain_steps = 0, terrain_pivots = 0, terrain_refusals = 0;
   uint64_t avatars_sent = 0, avatars_referenced = 0;
   std::array<uint64_t, 16> drops{};  ///< By protocol::DropReason.
+  MemoryFigures memory;
   std::chrono::steady_clock::time_point published{};
 };
 

@@ -25,8 +25,9 @@ struct Server::Player {
   uint32_t last_input_seq = 0;  ///< Newest command applied.
   ControlInput input;  ///< The command the player holds (applied in the look-ahead phase).
   bool input_changed = true;
-  /// The views of the last snapshots sent, and which the client acknowledged (avatar_delta.hpp).
-  protocol::AvatarHistory sent_avatars;
+  /// Which archived avatars went into the last snapshots sent, and which of those snapshots the
+  /// client acknowledged (sent_views.hpp).
+  protocol::SentViews sent_views;
   uint32_t echo_client_time_ms = 0;
   double tokens = 0;            ///< Packet rate limit (token bucket).
   // The session's keys: what we send is sealed, what it sends is opened (session_crypto.hpp).

@@ -234,6 +234,10 @@ void Server::run_tick(Clock::time_point now) {
 
 void Server::publish_admin(Clock::time_point now) {
   const ServerCounters& c = counters_;
+  // Memory once a second (a /proc read and a walk over the players), outside the lock.
+  const bool memory_due = tick_ % static_cast<uint32_t>(config_.tick_hz) == 0;
+  MemoryFigures memory;
+  if (memory_due) memory = memory_figures();
   std::lock_guard<std::mutex> lock(admin_state_->mutex);
   AdminMetrics& m = admin_state_->metrics;
   m.tick = tick_;
@@ -271,8 +275,20 @@ void Server::publish_admin(Clock::time_point now) {
   m.fighter_strikes = c.fighter_strikes, m.fighter_hits = c.fighter_hits;
   m.terrain_steps = c.terrain_steps, m.terrain_pivots = c.terrain_pivots, m.terrain_refusals = c.terrain_refusals;
   m.avatars_sent = c.avatars_sent, m.avatars_referenced = c.avatars_referenced;
+  if (memory_due) m.memory = memory;
   std::copy(c.drops.by_reason.begin(), c.drops.by_reason.end(), m.drops.begin());
   m.published = std::chrono::steady_clock::now();
+}
+
+MemoryFigures Server::memory_figures() const {
+  MemoryFigures f;
+  f.resident_bytes = resident_memory_bytes();
+  for (const auto& p : players_) {
+    if (p->avatar) f.tree_node_bytes += p->avatar->tree().node_bytes();
+    f.snapshot_history_bytes += p->sent_views.bytes();
+  }
+  f.snapshot_history_bytes += snapshot_archive_.bytes();
+  return f;
 }
 
 void Server::log_status() const {
@@ -518,6 +534,7 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
   p->endpoint = from;
   p->session = next_session_++;
   p->avatar_id = next_avatar_++;
+  p->sent_views.set_owner(p->avatar_id);
   p->name = join.name;
   // The session's keys (session_crypto.hpp): ours for this session, the client's from its response.
   const protocol::SessionKeyPair pair = protocol::session_keypair();
@@ -555,7 +572,7 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
 
 void Server::on_input(Player& p, const wire::Input& m) {
   // The client holds that snapshot whole: later ones may code its avatars against it.
-  p.sent_avatars.acknowledge(m.ack_snapshot());
+  p.sent_views.acknowledge(m.ack_snapshot());
   p.echo_client_time_ms = m.client_time_ms();
   const auto* commands = m.commands();
   if (commands == nullptr || commands->size() == 0) return;
@@ -691,6 +708,8 @@ void Server::send_snapshots(Clock::time_point now) {
     snapshot_states_.push_back(a);
   }
   terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
+  snapshot_archive_.start(snapshot_tick_, static_cast<uint32_t>(tick_)).avatars.assign(snapshot_states_.begin(),
+                                                                                        snapshot_states_.end());
   collect_fighter_poses();
   const bool interest = config_.interest_radius_m > 0;
   if (interest) interest_grid_.build(snapshot_positions_, config_.interest_radius_m);
@@ -699,7 +718,8 @@ void Server::send_snapshots(Clock::time_point now) {
     Player& p = *players_[by_id_[receiver]];
     if (p.is_fighter()) continue;
     build_view(receiver, interest);
-    avatar_encoder_.plan(view_states_, snapshot_tick_, static_cast<uint32_t>(tick_), p.sent_avatars);
+    p.sent_views.references(snapshot_archive_, view_states_, snapshot_tick_, view_references_);
+    avatar_encoder_.plan(view_states_, snapshot_tick_, static_cast<uint32_t>(tick_), view_references_);
     plan_snapshot_parts();
     const auto parts = static_cast<uint8_t>(snapshot_parts_.size());
     for (size_t part = 0; part < snapshot_parts_.size(); ++part) {
@@ -733,8 +753,8 @@ void Server::send_snapshots(Clock::time_point now) {
     }
     // What was sent (all of the view unless it ran past the 255 parts), for later references.
     const size_t sent_avatars = snapshot_parts_.back().avatars_end;
-    protocol::AvatarHistory::Slot& sent = p.sent_avatars.start(snapshot_tick_, static_cast<uint32_t>(tick_));
-    sent.avatars.assign(view_states_.begin(), view_states_.begin() + static_cast<std::ptrdiff_t>(sent_avatars));
+    p.sent_views.record(snapshot_tick_, snapshot_states_.size(), std::span(view_index_).first(sent_avatars),
+                        std::span(view_far_).first(sent_avatars));
     counters_.avatars_sent += sent_avatars;
     counters_.avatars_referenced += avatar_encoder_.referenced();
   }

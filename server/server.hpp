@@ -25,6 +25,7 @@
 #include "interest.hpp"
 #include "lookahead_workers.hpp"
 #include "protocol/avatar_delta.hpp"
+#include "protocol/sent_views.hpp"
 #include "protocol/cookie.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/session_crypto.hpp"
@@ -189,6 +190,7 @@ class Server {
   bool terrain_place_free(const Placement& place) const;
   void advance_terrain(TickRecord& record);
   void collect_terrain_body(const Player& p);
+  MemoryFigures memory_figures() const;
   void log_status() const;
   void publish_admin(Clock::time_point now);
   AdminReply admin_set(const std::string& key, const std::string& value);
@@ -263,6 +265,9 @@ class Server {
   std::vector<uint32_t> by_id_;                      ///< players_ indices by avatar id (snapshot order).
   std::vector<BodyVolume> contact_bodies_;           ///< check_contacts: this frame's bodies (reused).
   protocol::AvatarDeltaEncoder avatar_encoder_;      ///< The view's avatars, packed per part.
+  /// The avatars of the last 64 snapshots, once for every client (sent_views.hpp).
+  protocol::SnapshotArchive snapshot_archive_;
+  std::vector<protocol::AvatarReference> view_references_;  ///< One client's view's references (reused).
   std::vector<std::vector<uint8_t>> part_bits_;      ///< Per part, its packed avatars (reused).
   bool terrain_mode_ = false;
   terrain::TerrainAvatarConfig terrain_config_;

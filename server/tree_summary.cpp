@@ -43,7 +43,7 @@ std::span<const uint8_t> TreeSummaryWriter::write(protocol::PacketWriter& w, Mot
   vec2 origin(0.0f), chosen_end(0.0f);
   if (root >= 0) {
     const int chosen = tree.select_child();  // first: it refreshes stale priorities
-    const size_t pool = static_cast<size_t>(std::max(tree.config().max_nodes, 2));
+    const size_t pool = static_cast<size_t>(tree.node_capacity());
     if (sample_of_.size() < pool) {
       sample_of_.assign(pool, -1);
       branch_sum_.assign(pool, 0.0f);

@@ -60,7 +60,6 @@ LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWo
     for (const Transition& t : library.graph.successors(static_cast<int>(s)))
       if (standing_loop_[static_cast<size_t>(t.to)]) ends_standing_[s] = 1;
   traps_.reserve(library.graph.transitions.size());
-  visit_.reserve(static_cast<size_t>(tree_.config().max_nodes));
 }
 
 void LookaheadAvatar::set_input(const ControlInput& input) {

@@ -10,10 +10,7 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
     : library_(library), world_(world), config_(std::move(config)) {
   config_.max_nodes = std::max(config_.max_nodes, 2);
   config_.max_depth = std::clamp(config_.max_depth, 1, 65535);
-  nodes_.resize(static_cast<size_t>(config_.max_nodes));
-  order_.resize(static_cast<size_t>(config_.max_nodes));
-  queue_.reserve(static_cast<size_t>(config_.max_nodes));
-  visit_stack_.reserve(static_cast<size_t>(config_.max_nodes));
+  reserve_nodes(std::min(config_.max_nodes, kInitialNodes));
   ranked_.reserve(64);  // a segment's successors; grows once if a graph has more
   ranked_nodes_.reserve(64);
   root_sums_.reserve(64);
@@ -44,6 +41,14 @@ void MotionTree::reset(int segment, const Placement& start, int incoming_transit
   queue_.push_back({r.grow_priority, order_[static_cast<size_t>(root_)], root_});
 }
 
+void MotionTree::reserve_nodes(int n) {
+  const size_t size = static_cast<size_t>(n);
+  nodes_.resize(size);
+  order_.resize(size);
+  queue_.reserve(size);
+  visit_stack_.reserve(size);
+}
+
 int MotionTree::allocate() {
   int i = first_unused_;
   if (free_head_ >= 0) {
@@ -51,6 +56,10 @@ int MotionTree::allocate() {
     free_head_ = nodes_[static_cast<size_t>(i)].next_sibling;
   } else {
     assert(first_unused_ < config_.max_nodes);
+    // The storage doubles when the budget pays for more nodes than it holds (a few times in an
+    // avatar's life, never per node); no reference into nodes_ is held across allocate().
+    if (first_unused_ == static_cast<int>(nodes_.size()))
+      reserve_nodes(std::min(config_.max_nodes, 2 * first_unused_));
     ++first_unused_;
   }
   MotionTreeNode& n = nodes_[static_cast<size_t>(i)];

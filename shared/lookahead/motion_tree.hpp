@@ -7,8 +7,11 @@
 // playing segment ends, advance_root() picks the child whose branch has the largest weighted sum
 // of priorities (4.3); the root moves down and the sibling subtrees are freed (Fig. 4).
 //
-// Memory: nodes live in a fixed pool with a free list and the leaf queue is a heap over a vector
-// reserved once; nothing is allocated while growing, advancing or re-prioritising.
+// Memory: nodes live in a pool with a free list and the leaf queue is a heap over a vector. The
+// pool starts at kInitialNodes and doubles when the budget pays for more nodes than it holds, up
+// to max_nodes (a tree holds about 600 nodes at 200 players: 40 KB rather than 590 KB for 8192);
+// once it has grown to an avatar's working size nothing is allocated while growing, advancing or
+// re-prioritising.
 // Determinism: the same inputs and the same expansion budget give the same tree, bit for bit
 // (ties are broken by the order nodes were created).
 #include "library/motion_library.hpp"
@@ -26,7 +29,7 @@
 namespace foresight {
 
 struct MotionTreeConfig {
-  int max_nodes = 8192;        ///< Pool size. [Limit: >= 2]
+  int max_nodes = 8192;        ///< Nodes at most (the pool grows to this). [Limit: >= 2]
   int max_depth = 8;           ///< Root is depth 0; nodes deeper than this are never created.
   Strategy strategy = Strategy::kCommand;
   /// Weight of a node at depth d (1-based below the root) in the branch sum of 4.3; decreasing.
@@ -166,6 +169,13 @@ class MotionTree {
   int root() const { return root_; }
   const MotionTreeNode& node(int index) const { return nodes_[static_cast<size_t>(index)]; }
   int num_nodes() const { return num_nodes_; }
+  /// Nodes the pool holds now (node indices are below it); grows up to config().max_nodes.
+  int node_capacity() const { return static_cast<int>(nodes_.size()); }
+  /// Bytes of node storage (the pool, creation orders, leaf queue and walk stack).
+  size_t node_bytes() const {
+    return nodes_.capacity() * sizeof(MotionTreeNode) + order_.capacity() * sizeof(uint32_t) +
+           queue_.capacity() * sizeof(QueueEntry) + visit_stack_.capacity() * sizeof(int);
+  }
   int num_leaves_queued() const { return static_cast<int>(queue_.size()); }
   int max_depth_reached() const;
   const MotionTreeConfig& config() const { return config_; }
@@ -199,6 +209,8 @@ class MotionTree {
     return a.priority != b.priority ? a.priority < b.priority : a.order > b.order;
   }
 
+  static constexpr int kInitialNodes = 256;
+  void reserve_nodes(int n);
   int allocate();
   int branch_slot_of(int index) const;
   static int64_t branch_weight(const std::array<float, 8>& weights, const MotionTreeNode& n);

@@ -6,8 +6,6 @@
 namespace foresight::protocol {
 namespace {
 
-// References reach back at most this many snapshots (4 bits), inside the history.
-constexpr uint32_t kMaxBack = AvatarHistory::kSlots - 1;
 // A difference of more than this many millimetres is sent whole instead (it keeps the zigzag
 // code under 2^31).
 constexpr int64_t kMaxDeltaMm = int64_t{1} << 29;
@@ -60,35 +58,6 @@ void AvatarHistory::clear() {
     s.valid = s.usable = false;
     s.avatars.clear();
   }
-  newest_.clear();
-}
-
-void AvatarHistory::acknowledge(uint32_t snapshot) {
-  Slot* s = find(snapshot);
-  if (s == nullptr || s->usable) return;
-  s->usable = true;
-  // Merge the slot's avatars (sorted by id) into newest_ (sorted by id), keeping per id the newer
-  // snapshot (acknowledgements may arrive out of order) and dropping what is out of reach.
-  const auto newer = [](uint32_t a, uint32_t b) { return static_cast<int32_t>(a - b) > 0; };
-  const auto in_reach = [&](const Newest& n) { return snapshot - n.snapshot <= kMaxBack || newer(n.snapshot, snapshot); };
-  merged_.clear();
-  size_t a = 0, b = 0;
-  while (a < newest_.size() || b < s->avatars.size()) {
-    const uint32_t id_b = b < s->avatars.size() ? s->avatars[b].id() : UINT32_MAX;
-    if (a < newest_.size() && (b == s->avatars.size() || newest_[a].id < id_b)) {
-      if (in_reach(newest_[a])) merged_.push_back(newest_[a]);
-      ++a;
-      continue;
-    }
-    Newest n{id_b, snapshot, static_cast<uint32_t>(b)};
-    if (a < newest_.size() && newest_[a].id == id_b) {
-      if (newer(newest_[a].snapshot, snapshot)) n = newest_[a];
-      ++a;
-    }
-    merged_.push_back(n);
-    ++b;
-  }
-  newest_.swap(merged_);
 }
 
 void AvatarHistory::reserve(size_t avatars) {
@@ -96,34 +65,26 @@ void AvatarHistory::reserve(size_t avatars) {
 }
 
 void AvatarDeltaEncoder::plan(std::span<const wire::AvatarState> view, uint32_t snapshot, uint32_t server_tick,
-                              const AvatarHistory& history) {
+                              std::span<const AvatarReference> references) {
   view_ = view;
   num_refs_ = 0;
   referenced_ = 0;
   ref_of_.assign(view.size(), -1);
   reference_.assign(view.size(), nullptr);
-  // Both lists are sorted by id: one walk finds each avatar's newest acknowledged state.
-  const std::vector<AvatarHistory::Newest>& newest = history.newest();
-  size_t n = 0;
-  for (size_t i = 0; i < view.size(); ++i) {
-    while (n < newest.size() && newest[n].id < view[i].id()) ++n;
-    if (n == newest.size()) break;
-    if (newest[n].id != view[i].id()) continue;
-    const uint32_t back = snapshot - newest[n].snapshot;
-    const AvatarHistory::Slot* slot = history.find(newest[n].snapshot);
-    if (back == 0 || back > kMaxBack || slot == nullptr || !slot->usable || newest[n].index >= slot->avatars.size() ||
-        server_tick - slot->server_tick >= kMaxRefTicks)
+  for (size_t i = 0; i < references.size() && i < view.size(); ++i) {
+    const AvatarReference& r = references[i];
+    const uint32_t back = snapshot - r.snapshot, ticks = server_tick - r.server_tick;
+    if (!r.found || back == 0 || back > kMaxReferenceBack || ticks >= kMaxRefTicks || r.state.id() != view[i].id() ||
+        !delta_fits(view[i], r.state))
       continue;
-    const wire::AvatarState& r = slot->avatars[newest[n].index];
-    if (r.id() != view[i].id() || !delta_fits(view[i], r)) continue;
     int ref = 0;
-    while (ref < num_refs_ && refs_[static_cast<size_t>(ref)].slot != slot) ++ref;
+    while (ref < num_refs_ && refs_[static_cast<size_t>(ref)].back != back) ++ref;
     if (ref == num_refs_) {
       if (num_refs_ == static_cast<int>(refs_.size())) continue;  // no index left: whole
-      refs_[static_cast<size_t>(num_refs_++)] = {back, server_tick - slot->server_tick, slot};
+      refs_[static_cast<size_t>(num_refs_++)] = {back, ticks};
     }
     ref_of_[i] = static_cast<int8_t>(ref);
-    reference_[i] = &r;
+    reference_[i] = &r.state;
     ++referenced_;
   }
   index_bits_ = index_bits(num_refs_);
@@ -141,7 +102,7 @@ void AvatarDeltaEncoder::begin_part(BitWriter& out) {
   out.put(static_cast<uint32_t>(transition_bits_), 6);
   out.put(static_cast<uint32_t>(num_refs_), 3);
   for (int i = 0; i < num_refs_; ++i) {
-    out.put(refs_[static_cast<size_t>(i)].back, 4);
+    out.put(refs_[static_cast<size_t>(i)].back, 6);
     out.put_gamma(uint64_t{refs_[static_cast<size_t>(i)].ticks} + 1);
   }
   previous_id_ = -1;
@@ -208,7 +169,7 @@ AvatarDecodeStatus decode_avatars(std::span<const uint8_t> packed, uint32_t coun
   std::array<Ref, 7> refs{};
   const int num_refs = static_cast<int>(in.get(3));
   for (int i = 0; i < num_refs; ++i) {
-    const uint32_t back = in.get(4);
+    const uint32_t back = in.get(6);
     const uint64_t ticks = in.get_gamma();
     if (back == 0 || ticks == 0 || ticks - 1 >= kMaxRefTicks) return AvatarDecodeStatus::kMalformed;
     const AvatarHistory::Slot* s = history.find(snapshot - back);
@@ -280,7 +241,7 @@ AvatarDecodeStatus snapshot_avatars(const wire::Snapshot& m, const AvatarHistory
 
 void pack_avatars(std::span<const wire::AvatarState> avatars, std::vector<uint8_t>& out) {
   AvatarDeltaEncoder encoder;
-  encoder.plan(avatars, 0, 0, AvatarHistory{});
+  encoder.plan(avatars, 0, 0, {});
   encoder.write_part(0, avatars.size(), out);
 }
 

@@ -8,16 +8,18 @@
 // changed fields as differences (about 60 bits); an avatar the client has no acknowledged state
 // of is sent whole (about 100 bits). A plain AvatarState is 192 bits.
 //
-// Both sides keep the same AvatarHistory: the server the views it sent (with which ones the
-// client acknowledged), the client the snapshots it decoded whole (every part). The server only
-// refers to snapshots the client acknowledged, and the client acknowledges only snapshots it holds
-// whole, so every reference can be resolved; one that cannot (a client that lost its history) is
-// an error, and the client then keeps acknowledging its last whole snapshot until the server's
-// references age out of the history and it sends whole states again.
+// The client keeps the snapshots it decoded whole (AvatarHistory, every part); the server keeps
+// what it sent each client and which of those snapshots the client acknowledged (SentViews over
+// one SnapshotArchive, sent_views.hpp). The server only refers to snapshots the client
+// acknowledged, and the client acknowledges only snapshots it holds whole, so every reference can
+// be resolved; one that cannot (a client that lost its history) is an error, and the client then
+// keeps acknowledging its last whole snapshot until the server's references age out of the
+// history and it sends whole states again. Both histories hold 64 snapshots (3.2 s at 20 Hz), so
+// delta coding survives a round trip of 2 s and more.
 //
 // Part format (BitWriter codes, bit_stream.hpp):
 //   S: width of segments (5 bits), T: width of transitions + 1 (6 bits)
-//   refs: 3 bits, then per reference: snapshots back (4 bits, 1..15), server ticks since it (gamma of n + 1)
+//   refs: 3 bits, then per reference: snapshots back (6 bits, 1..63), server ticks since it (gamma of n + 1)
 //   per avatar, in increasing id order (the count is the Snapshot's avatar_count):
 //     id - previous id (gamma; the previous id of the first is -1)
 //     with refs: 1 bit "has a reference", and its index (ceil(log2(refs)) bits) if refs > 1
@@ -40,16 +42,16 @@
 
 namespace foresight::protocol {
 
-/// The avatar lists of the last kSlots snapshots, by snapshot number (Snapshot::tick).
+/// The receiver's side: the avatar lists of the last kSlots snapshots it decoded, by snapshot
+/// number (Snapshot::tick), what the packed avatars' references resolve in.
 class AvatarHistory {
  public:
-  static constexpr uint32_t kSlots = 16;
+  static constexpr uint32_t kSlots = 64;
   struct Slot {
     uint32_t snapshot = 0;
     uint32_t server_tick = 0;
     bool valid = false;
-    /// Server: the client acknowledged it. Client: every part of it was decoded.
-    bool usable = false;
+    bool usable = false;  ///< Every part of it was decoded.
     std::vector<wire::AvatarState> avatars;  ///< Sorted by id.
     const wire::AvatarState* find(uint32_t id) const;
   };
@@ -62,20 +64,20 @@ class AvatarHistory {
   /// Room for this many avatars in every slot (then start() and assigning up to that allocate nothing).
   void reserve(size_t avatars);
 
-  /// The sender's side: the receiver holds `snapshot` whole. Marks it usable and notes, per
-  /// avatar, the newest usable snapshot holding it (what AvatarDeltaEncoder codes it against).
-  void acknowledge(uint32_t snapshot);
-  struct Newest {
-    uint32_t id = 0;
-    uint32_t snapshot = 0;
-    uint32_t index = 0;  ///< In that snapshot's slot.
-  };
-  /// By id; entries may be stale (their slot reused): check the slot before use.
-  const std::vector<Newest>& newest() const { return newest_; }
-
  private:
   std::array<Slot, kSlots> slots_;
-  std::vector<Newest> newest_, merged_;
+};
+
+/// References reach back at most this many snapshots (the 6-bit field), inside the histories.
+inline constexpr uint32_t kMaxReferenceBack = AvatarHistory::kSlots - 1;
+
+/// What the sender codes one view avatar against: the state the receiver holds of it in an
+/// earlier, acknowledged snapshot (SentViews::references fills them).
+struct AvatarReference {
+  bool found = false;
+  uint32_t snapshot = 0;
+  uint32_t server_tick = 0;
+  wire::AvatarState state;  ///< As the receiver holds it (its flags included).
 };
 
 /// Writes one client's view of a snapshot as packed parts. plan() once per snapshot, then per part
@@ -85,10 +87,10 @@ class AvatarDeltaEncoder {
   /// Worst case bytes of one add() (so a part can be closed before it overflows).
   static constexpr size_t kMaxAvatarBytes = 40;
 
-  /// `view`: sorted by id, alive until the last add(). `history`: what was sent before (its
-  /// acknowledged snapshots are references: AvatarHistory::acknowledge).
+  /// `view`: sorted by id; `references`: one per view avatar, or none at all (everything whole);
+  /// both alive until the last add().
   void plan(std::span<const wire::AvatarState> view, uint32_t snapshot, uint32_t server_tick,
-            const AvatarHistory& history);
+            std::span<const AvatarReference> references);
   void begin_part(BitWriter& out);
   /// Codes view[index]. The part is complete after out.finish().
   void add(size_t index, BitWriter& out);
@@ -102,7 +104,6 @@ class AvatarDeltaEncoder {
   struct Ref {
     uint32_t back = 0;
     uint32_t ticks = 0;
-    const AvatarHistory::Slot* slot = nullptr;
   };
   std::span<const wire::AvatarState> view_;
   std::array<Ref, 7> refs_{};

@@ -6,7 +6,7 @@
 namespace foresight::protocol {
 
 /// Bumped whenever a peer of the previous version could misread a message.
-inline constexpr uint32_t kProtocolVersion = 7;  // 2: TreeNodeSample carries segment, heading; 3: fighters; 4: terrain bodies; 5: sealed sessions; 6: packed avatars; 7: scenes sent to clients
+inline constexpr uint32_t kProtocolVersion = 8;  // 2: TreeNodeSample carries segment, heading; 3: fighters; 4: terrain bodies; 5: sealed sessions; 6: packed avatars; 7: scenes sent to clients; 8: packed-avatar references reach 63 snapshots back (6 bits)
 
 /// Largest datagram anyone sends: under the common 1280-byte IPv6 minimum MTU after headers, so
 /// nothing is ever fragmented.

@@ -110,6 +110,36 @@ TEST(MotionTree, AdvancingTheRootKeepsOnlyTheChosenBranch) {
   EXPECT_LE(t.num_nodes(), t.config().max_nodes);
 }
 
+// Node storage follows the work (issue 20): a small tree holds a small pool; the pool doubles as
+// the budget pays for more nodes and stops at the cap, also when the cap is not a power of two.
+TEST(MotionTree, NodeStorageGrowsWithTheTreeUpToTheCap) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTree t(lib, arena.world, config_for(Strategy::kCommand, 3000));
+  t.reset(walk_segment(lib), kOpen);
+  t.set_command(vec2(0.0f, 1.0f), kOpen);
+  t.grow(GrowBudget::expansions(40));
+  EXPECT_GE(t.node_capacity(), t.num_nodes());
+  EXPECT_LE(t.node_capacity(), 512) << "a tree of " << t.num_nodes() << " nodes";
+  const size_t small_bytes = t.node_bytes();
+  EXPECT_LT(small_bytes, 3000u * sizeof(MotionTreeNode) / 4);
+  EXPECT_NE(t.grow(GrowBudget::expansions(1000000)).status & kGrowOutOfNodes, 0);
+  EXPECT_EQ(t.node_capacity(), 3000);
+  EXPECT_GT(t.num_nodes(), 2900);
+  EXPECT_GT(t.node_bytes(), 4 * small_bytes);
+  // Every node is still reachable and placed where its parent ends after the moves.
+  int counted = 0;
+  t.for_each_node([&](int i, const MotionTreeNode& n) {
+    ++counted;
+    if (n.parent >= 0) {
+      const MotionTreeNode& p = t.node(n.parent);
+      EXPECT_LT(glm::length(p.start.compose(lib.segment_motion[static_cast<size_t>(p.segment)].end).pos_m - n.start.pos_m), 1e-4f)
+          << "node " << i;
+    }
+  });
+  EXPECT_EQ(counted, t.num_nodes());
+}
+
 TEST(MotionTree, BudgetsCapsAndStatusesAreHonoured) {
   const auto& lib = default_library();
   const auto& arena = loaded_scene("arena");

@@ -120,6 +120,11 @@ TEST(Admin, MetricsAndStatusAreTheServersOwnFigures) {
   EXPECT_EQ(sample(m, "foresight_snapshot_avatars_delta_total"), 0.0) << "a raw client acknowledges no snapshot";
   EXPECT_EQ(sample(m, "foresight_steered_frames_total"), static_cast<double>(r.server.counters().steered_frames));
   EXPECT_EQ(sample(m, "foresight_recoveries_total"), static_cast<double>(r.server.counters().recoveries));
+  // Memory (refreshed once a second; 30 ticks at 30 Hz include one refresh): the process's
+  // resident set, and the trees' storage, at least what their nodes take.
+  EXPECT_GT(sample(m, "process_resident_memory_bytes"), 1e6);
+  EXPECT_GE(sample(m, "foresight_tree_node_bytes"), sample(m, "foresight_tree_size_mean") * sizeof(MotionTreeNode));
+  EXPECT_GT(sample(m, "foresight_snapshot_history_bytes"), 0.0);
   // Drops by reason add up to the server's total, and the garbage datagram is among them.
   double dropped = 0;
   const std::regex drop_line("foresight_packets_dropped_total\\{reason=\"[a-z_]+\"\\} ([0-9]+)");
@@ -141,6 +146,7 @@ TEST(Admin, MetricsAndStatusAreTheServersOwnFigures) {
   EXPECT_EQ(s["scene"], "arena");
   EXPECT_EQ(s["config"]["strategy"], "command");
   EXPECT_GT(s["tree_size_mean"].get<double>(), 1.0);
+  EXPECT_EQ(s["memory"]["tree_node_bytes"].get<double>(), sample(m, "foresight_tree_node_bytes"));
 }
 
 TEST(Admin, CommandsChangeTheRunningServer) {

@@ -90,7 +90,11 @@ TEST(PackedSnapshots, AnAcknowledgingClientDecodesExactlyWhatAWholeStateClientGe
   const double delta_per_snapshot = static_cast<double>(delta.bytes_received()) / static_cast<double>(delta.snapshot_ticks());
   std::printf("8 avatars: %.0f bytes a snapshot whole (%zu states), %.0f delta-coded (sealing included; the delta figure also counts the few other messages)\n", whole_per_snapshot,
               whole_states, delta_per_snapshot);
-  EXPECT_LT(delta_per_snapshot, 0.8 * whole_per_snapshot);
+  // With 8 avatars most of a datagram is the same either way (sealing, the Snapshot table, its
+  // other fields, and the delta figure counts the other messages too): 0.80 of whole was the
+  // margin until the references' snapshots-back field grew from 4 to 6 bits (protocol 8), then
+  // 212.6 against 212.4 bytes. Bytes per avatar are checked in avatar_delta_test.cpp.
+  EXPECT_LT(delta_per_snapshot, 0.85 * whole_per_snapshot);
   fleet.disconnect_all();
 }
 

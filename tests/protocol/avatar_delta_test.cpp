@@ -2,6 +2,7 @@
 // exactly what the server coded, whatever it was coded against; bad input is an error, never a
 // wrong avatar.
 #include "protocol/avatar_delta.hpp"
+#include "protocol/sent_views.hpp"
 
 #include "math/splitmix64.hpp"
 #include "support/alloc_counter.hpp"
@@ -29,19 +30,29 @@ void expect_same(const std::vector<State>& got, const std::vector<State>& want) 
   for (size_t i = 0; i < want.size(); ++i) EXPECT_TRUE(same(got[i], want[i])) << "avatar " << i << " (id " << want[i].id() << ")";
 }
 
-// One part of `view` coded against `history` (as of snapshot `snapshot`, server tick `tick`).
-std::vector<uint8_t> encode(const std::vector<State>& view, uint32_t snapshot, uint32_t tick, const AvatarHistory& history,
+// One part of `view` coded against what `sender` sent and had acknowledged (as of snapshot
+// `snapshot`, server tick `tick`).
+std::vector<uint8_t> encode(const std::vector<State>& view, uint32_t snapshot, uint32_t tick, WholeViewSender& sender,
                             size_t begin = 0, size_t end = SIZE_MAX) {
   AvatarDeltaEncoder encoder;
-  encoder.plan(view, snapshot, tick, history);
+  sender.plan(encoder, view, snapshot, tick);
   std::vector<uint8_t> bytes;
   encoder.write_part(begin, std::min(end, view.size()), bytes);
   return bytes;
 }
 
-void remember(AvatarHistory& h, uint32_t snapshot, uint32_t tick, const std::vector<State>& view, bool acknowledged = true) {
-  h.start(snapshot, tick).avatars = view;
-  if (acknowledged) h.acknowledge(snapshot);
+// The client's side: it decoded `view` as `snapshot` (whole: usable).
+void remember(AvatarHistory& h, uint32_t snapshot, uint32_t tick, const std::vector<State>& view, bool usable = true) {
+  AvatarHistory::Slot& slot = h.start(snapshot, tick);
+  slot.avatars = view;
+  slot.usable = usable;
+}
+
+// The server's side: it sent `view` as `snapshot`, and the client acknowledged it.
+void remember(WholeViewSender& sender, uint32_t snapshot, uint32_t tick, const std::vector<State>& view,
+              bool acknowledged = true) {
+  sender.remember(snapshot, tick, view);
+  if (acknowledged) sender.acknowledge(snapshot);
 }
 
 TEST(BitStream, CodesRoundTripAtTheirLimits) {
@@ -81,9 +92,10 @@ TEST(AvatarDelta, WholeStatesRoundTripAtEveryFieldsLimits) {
                                 State(1, 0, 0, INT32_MAX, 0, 0, 0, 0, 0xFFFF),
                                 State(17, -1, 1, 423, 73, 12345, 29, kAvatarYours | kAvatarFar, 0),
                                 State(UINT32_MAX, 5, -5, INT32_MIN, 1, 1, 1, 1, 1)};
+  WholeViewSender none;
   const AvatarHistory empty;
   std::vector<State> out;
-  ASSERT_EQ(decode_avatars(encode(view, 9, 9, empty), 4, 9, empty, out), AvatarDecodeStatus::kOk);
+  ASSERT_EQ(decode_avatars(encode(view, 9, 9, none), 4, 9, empty, out), AvatarDecodeStatus::kOk);
   expect_same(out, view);
 }
 
@@ -94,7 +106,8 @@ TEST(AvatarDelta, AnAvatarStillPlayingItsSegmentCostsAboutOneByte) {
     before.emplace_back(id, 1000 * int32_t(id), -2000, int32_t(id % 7), uint16_t(id % 50), uint16_t(id * 300), 3, 0, 0);
     now.emplace_back(id, 1000 * int32_t(id), -2000, int32_t(id % 7), uint16_t(id % 50), uint16_t(id * 300), 5, 0, 0);
   }
-  AvatarHistory server, client;
+  WholeViewSender server;
+  AvatarHistory client;
   remember(server, 10, 15, before);
   remember(client, 10, 0, before);  // the client does not know server ticks: they travel in the part
   const std::vector<uint8_t> bytes = encode(now, 11, 17, server);
@@ -106,7 +119,7 @@ TEST(AvatarDelta, AnAvatarStillPlayingItsSegmentCostsAboutOneByte) {
 }
 
 TEST(AvatarDelta, ChangedFieldsAndNewcomersAreCodedAgainstTheRightReference) {
-  AvatarHistory history;
+  WholeViewSender history;
   // Snapshot 20 (tick 30) held avatars 1-4; snapshot 24 (tick 36) held 1 and 5 (4 was far away);
   // snapshot 25 was sent but not acknowledged: never a reference.
   remember(history, 20, 30, {State(1, 0, 0, 3, 7, 100, 2, 0, 0), State(2, 500, 500, 4, 8, 200, 9, 0, 0),
@@ -131,35 +144,88 @@ TEST(AvatarDelta, ChangedFieldsAndNewcomersAreCodedAgainstTheRightReference) {
 }
 
 TEST(AvatarDelta, AcknowledgementsOutOfOrderStillReferToTheNewest) {
-  AvatarHistory history;
-  history.start(3, 3).avatars = {State(1, 0, 0, 1, 1, 1, 1, 0, 0), State(2, 0, 0, 1, 1, 1, 1, 0, 0)};
-  history.start(4, 4).avatars = {State(1, 0, 0, 1, 1, 1, 2, 0, 0)};
-  history.acknowledge(4);
-  history.acknowledge(3);  // late
-  history.acknowledge(3);  // and repeated
-  ASSERT_EQ(history.newest().size(), 2u);
-  EXPECT_EQ(history.newest()[0].snapshot, 4u) << "avatar 1: snapshot 4 is newer";
-  EXPECT_EQ(history.newest()[1].snapshot, 3u) << "avatar 2 is only in 3";
-  // 16 snapshots after 4, neither is in reach any more (references go 15 back): whole states again.
-  history.start(20, 20).avatars = {State(3, 0, 0, 1, 1, 1, 1, 0, 0)};
-  history.acknowledge(20);
-  ASSERT_EQ(history.newest().size(), 1u);
-  EXPECT_EQ(history.newest()[0].id, 3u);
+  SnapshotArchive archive;
+  SentViews views;
+  const std::vector<uint32_t> both{0, 1}, first{0};
+  archive.start(3, 3).avatars = {State(1, 0, 0, 1, 1, 1, 1, 0, 0), State(2, 0, 0, 1, 1, 1, 1, 0, 0)};
+  views.record(3, 2, both, {});
+  archive.start(4, 4).avatars = {State(1, 0, 0, 1, 1, 1, 2, 0, 0), State(2, 0, 0, 1, 1, 1, 2, 0, 0)};
+  views.record(4, 2, first, {});  // avatar 2 was not in this receiver's view of 4
+  views.acknowledge(4);
+  views.acknowledge(3);  // late
+  views.acknowledge(3);  // and repeated
+  const std::vector<State> now{State(1, 0, 0, 1, 1, 1, 3, 0, 0), State(2, 0, 0, 1, 1, 1, 3, 0, 0)};
+  std::vector<AvatarReference> refs;
+  views.references(archive, now, 5, refs);
+  ASSERT_EQ(refs.size(), 2u);
+  ASSERT_TRUE(refs[0].found && refs[1].found);
+  EXPECT_EQ(refs[0].snapshot, 4u) << "avatar 1: snapshot 4 is newer";
+  EXPECT_EQ(refs[0].state.frame(), 2u);
+  EXPECT_EQ(refs[1].snapshot, 3u) << "avatar 2 is only in this receiver's 3";
+  // 64 snapshots after 4, neither is in reach any more (references go 63 back): whole states again.
+  views.references(archive, now, 4 + SnapshotArchive::kSlots, refs);
+  EXPECT_FALSE(refs[0].found || refs[1].found);
+}
+
+// The receiver's own avatar comes back flagged kAvatarYours, the far ones kAvatarFar, as they were
+// sent, though the archive holds each avatar once without them.
+TEST(AvatarDelta, ReferencesCarryTheFlagsTheReceiverWasSent) {
+  SnapshotArchive archive;
+  SentViews views;
+  views.set_owner(2);
+  archive.start(7, 7).avatars = {State(1, 0, 0, 1, 1, 1, 1, kAvatarNpc, 0), State(2, 0, 0, 1, 1, 1, 1, 0, 0),
+                                 State(3, 0, 0, 1, 1, 1, 1, 0, 0)};
+  const std::vector<uint32_t> indices{0, 1, 2};
+  const std::vector<uint8_t> far{1, 0, 0};
+  views.record(7, 3, indices, far);
+  views.acknowledge(7);
+  std::vector<AvatarReference> refs;
+  views.references(archive, archive.find(7)->avatars, 8, refs);
+  ASSERT_TRUE(refs[0].found && refs[1].found && refs[2].found);
+  EXPECT_EQ(refs[0].state.flags(), kAvatarNpc | kAvatarFar);
+  EXPECT_EQ(refs[1].state.flags(), kAvatarYours);
+  EXPECT_EQ(refs[2].state.flags(), 0);
+}
+
+// Delta coding survives a round trip of 2 s (40 snapshots at 20 Hz, issue 19): the newest
+// acknowledgement that came back is 50 snapshots old and still a reference.
+TEST(AvatarDelta, AReferenceFiftySnapshotsBackStillCodesDelta) {
+  std::vector<State> before, now;
+  for (uint32_t id = 1; id <= 50; ++id) {
+    before.emplace_back(id, 100 * int32_t(id), 0, 2, 3, 4, 0, 0, 0);
+    now.emplace_back(id, 100 * int32_t(id), 0, 2, 3, 4, 75, 0, 0);
+  }
+  WholeViewSender server;
+  AvatarHistory client;
+  remember(server, 10, 10, before);
+  remember(client, 10, 0, before);
+  for (uint32_t s = 11; s < 60; ++s) remember(server, s, s + s / 2, now, /*acknowledged=*/false);  // still on their way
+  AvatarDeltaEncoder encoder;
+  server.plan(encoder, now, 60, 85);
+  EXPECT_EQ(encoder.referenced(), now.size());
+  std::vector<uint8_t> bytes;
+  encoder.write_part(0, now.size(), bytes);
+  EXPECT_LE(bytes.size(), 50u * 6 / 8 + 6);  // about 6 bits an avatar, as one snapshot back
+  std::vector<State> out;
+  ASSERT_EQ(decode_avatars(bytes, 50, 60, client, out), AvatarDecodeStatus::kOk);
+  expect_same(out, now);
 }
 
 TEST(AvatarDelta, PartsOfOneViewDecodeOnTheirOwn) {
-  AvatarHistory history;
+  WholeViewSender server;
+  AvatarHistory client;
   std::vector<State> before, now;
   for (uint32_t id = 3; id < 300; id += 3) {
     before.emplace_back(id, int32_t(id) * 10, 0, 1, 2, 3, 4, 0, 0);
     now.emplace_back(id, int32_t(id) * 10 + (id % 2 ? 700 : 0), 0, 1, 2, 3, 6, 0, 0);
   }
-  remember(history, 40, 60, before);
+  remember(server, 40, 60, before);
+  remember(client, 40, 0, before);
   // Decoded in reverse order, as datagrams may arrive.
   std::vector<State> out;
   for (size_t begin : {66u, 33u, 0u}) {
     std::vector<State> part;
-    ASSERT_EQ(decode_avatars(encode(now, 41, 62, history, begin, begin + 33), 33, 41, history, part),
+    ASSERT_EQ(decode_avatars(encode(now, 41, 62, server, begin, begin + 33), 33, 41, client, part),
               AvatarDecodeStatus::kOk);
     out.insert(out.begin(), part.begin(), part.end());
   }
@@ -167,7 +233,7 @@ TEST(AvatarDelta, PartsOfOneViewDecodeOnTheirOwn) {
 }
 
 TEST(AvatarDelta, AReferenceTheClientDoesNotHoldIsAnErrorNotAWrongAvatar) {
-  AvatarHistory server;
+  WholeViewSender server;
   remember(server, 5, 5, {State(1, 10, 10, 1, 1, 1, 1, 0, 0)});
   const std::vector<State> now{State(1, 10, 10, 1, 1, 1, 2, 0, 0)};
   const std::vector<uint8_t> bytes = encode(now, 6, 6, server);
@@ -186,8 +252,9 @@ TEST(AvatarDelta, AReferenceTheClientDoesNotHoldIsAnErrorNotAWrongAvatar) {
 TEST(AvatarDelta, CutOffPaddedOrMiscountedPartsAreMalformed) {
   std::vector<State> view;
   for (uint32_t id = 1; id <= 20; ++id) view.emplace_back(id, int32_t(id) * 77, -int32_t(id), 3, 4, 5, 6, 0, 0);
+  WholeViewSender none;
   const AvatarHistory empty;
-  const std::vector<uint8_t> bytes = encode(view, 1, 1, empty);
+  const std::vector<uint8_t> bytes = encode(view, 1, 1, none);
   std::vector<State> out;
   for (size_t n = 0; n < bytes.size(); ++n) {
     EXPECT_EQ(decode_avatars({bytes.data(), n}, 20, 1, empty, out), AvatarDecodeStatus::kMalformed) << n << " bytes";
@@ -228,7 +295,7 @@ TEST(AvatarDelta, HugeDifferencesWrapInsteadOfOverflowing) {
   std::vector<uint8_t> bytes;
   BitWriter w(bytes);
   w.put(0, 5), w.put(0, 6);           // widths of segments and transitions
-  w.put(1, 3), w.put(1, 4);           // one reference: one snapshot back,
+  w.put(1, 3), w.put(1, 6);           // one reference: one snapshot back,
   w.put_gamma(1);                     // 0 ticks since
   w.put_gamma(2);                     // avatar 1
   w.put_bit(true), w.put_bit(false);  // with the reference; a new play-through
@@ -267,23 +334,23 @@ TEST(AvatarDelta, RandomBytesNeverDecodeOutOfBounds) {
 // The server's side per client and snapshot (plan, code, remember, acknowledge): once its vectors
 // have grown to the view's size, nothing is allocated.
 TEST(AvatarDelta, AWarmSenderAllocatesNothingPerSnapshot) {
-  AvatarHistory history;
+  WholeViewSender history;
   AvatarDeltaEncoder encoder;
   std::vector<uint8_t> bytes;
   bytes.reserve(2048);
   std::vector<State> view;
   for (uint32_t id = 1; id <= 120; ++id) view.emplace_back(id, int32_t(id) * 100, 0, 3, 4, 5, 0, 0, 0);
   int allocations = 0;
-  for (uint32_t snapshot = 1; snapshot <= 60; ++snapshot) {
+  for (uint32_t snapshot = 1; snapshot <= 100; ++snapshot) {
     for (size_t i = 0; i < view.size(); ++i) {
       const State& a = view[i];
       view[i] = (snapshot + i) % 9 == 0 ? State(a.id(), a.start_x_mm() + 600, 0, 3, 4, 5, 0, 0, 0)
                                         : State(a.id(), a.start_x_mm(), 0, 3, 4, 5, static_cast<uint8_t>(a.frame() + 1), 0, 0);
     }
-    test::AllocationCount counting(snapshot > 20);  // 16 slots and the lists have grown by then
-    encoder.plan(view, snapshot, snapshot, history);
+    test::AllocationCount counting(snapshot > 70);  // the 64 slots and the lists have grown by then
+    history.plan(encoder, view, snapshot, snapshot);
     encoder.write_part(0, view.size(), bytes);
-    history.start(snapshot, snapshot).avatars.assign(view.begin(), view.end());
+    history.remember(snapshot, snapshot, view);
     history.acknowledge(snapshot);
     allocations += counting.allocations();
   }
@@ -296,7 +363,8 @@ TEST(AvatarDelta, AWarmSenderAllocatesNothingPerSnapshot) {
 // its acknowledgements are lost too); every snapshot the client decodes is exactly the server's.
 TEST(AvatarDelta, ALossyLinkNeverDesynchronises) {
   SplitMix64 rng(2026);
-  AvatarHistory server, client;
+  WholeViewSender server;
+  AvatarHistory client;
   std::vector<State> world;
   for (uint32_t id = 1; id <= 60; ++id) world.emplace_back(id, 0, 0, -1, 0, 0, 0, 0, 0);
   uint32_t next_id = 61, tick = 0;
@@ -321,7 +389,7 @@ TEST(AvatarDelta, ALossyLinkNeverDesynchronises) {
     for (const State& a : world)
       if (rng.next() % 5 != 0) view.push_back(a);
     AvatarDeltaEncoder encoder;
-    encoder.plan(view, snapshot, tick, server);
+    server.plan(encoder, view, snapshot, tick);
     referenced += static_cast<int>(encoder.referenced());
     std::vector<uint8_t> bytes;
     encoder.write_part(0, view.size(), bytes);

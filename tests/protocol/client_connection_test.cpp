@@ -2,6 +2,7 @@
 // handshake, Inputs with redundancy, idle heartbeats, snapshot merging, round-trip times,
 // refusals, timeouts and every kind of datagram the client must drop.
 #include "support/alloc_counter.hpp"
+#include "protocol/sent_views.hpp"
 #include "protocol/client_connection.hpp"
 #include "protocol/session_crypto.hpp"
 #include "protocol/input_packet.hpp"
@@ -303,12 +304,12 @@ TEST_F(ClientConnectionTest, SnapshotPartsMergeAndANewerTickReplaces) {
 TEST_F(ClientConnectionTest, AvatarsCodedAgainstASnapshotItDoesNotHoldAreDroppedAndCounted) {
   connect();
   // The server codes snapshot 21 against snapshot 20, which never reached this client.
-  AvatarHistory server_side;
-  server_side.start(20, 30).avatars = {wire::AvatarState(1, 0, 0, -1, 2, 0, 3, 0, 0)};
+  WholeViewSender server_side;
+  server_side.remember(20, 30, std::vector<wire::AvatarState>{wire::AvatarState(1, 0, 0, -1, 2, 0, 3, 0, 0)});
   server_side.acknowledge(20);
   const std::vector<wire::AvatarState> now{wire::AvatarState(1, 0, 0, -1, 2, 0, 5, 0, 0)};
   AvatarDeltaEncoder encoder;
-  encoder.plan(now, 21, 32, server_side);
+  server_side.plan(encoder, now, 21, 32);
   std::vector<uint8_t> packed;
   encoder.write_part(0, now.size(), packed);
   auto& fbb = server_.writer().begin();

@@ -1,0 +1,93 @@
+#pragma once
+// The sender's memory of the snapshots it sent, for the packed avatars' references
+// (avatar_delta.hpp), sized in time: 64 snapshots, 3.2 s at 20 Hz, so delta coding survives a
+// round trip of 2 s and more.
+//
+// Every receiver's view of a snapshot is a subset of the same avatars, differing only in the
+// per-receiver flags kAvatarYours and kAvatarFar. So the avatars of each snapshot are kept once
+// (SnapshotArchive, shared by all receivers) and, per receiver, only which of them went into its
+// view and which as far ones (SentViews: 2 bits an archived avatar a snapshot, 16 KB for 1000
+// avatars), with whether the receiver acknowledged that snapshot. Copying each view whole per
+// receiver would cost 64 x 24 bytes per avatar in view: 300 KB per receiver seeing 200 avatars.
+#include "protocol/avatar_delta.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace foresight::protocol {
+
+/// The avatars of the last kSlots snapshots sent, by snapshot number, as the world had them
+/// (without per-receiver flags).
+class SnapshotArchive {
+ public:
+  static constexpr uint32_t kSlots = AvatarHistory::kSlots;
+  struct Slot {
+    uint32_t snapshot = 0;
+    uint32_t server_tick = 0;
+    bool valid = false;
+    std::vector<wire::AvatarState> avatars;  ///< Sorted by id.
+  };
+
+  /// The slot of `snapshot`, emptied; it replaces the snapshot kSlots earlier.
+  Slot& start(uint32_t snapshot, uint32_t server_tick);
+  const Slot* find(uint32_t snapshot) const;
+  /// Room for this many avatars in every slot.
+  void reserve(size_t avatars);
+  /// Bytes held (capacity), for the server's memory report.
+  size_t bytes() const;
+
+ private:
+  std::array<Slot, kSlots> slots_;
+};
+
+/// One receiver's views of the archived snapshots: which avatars, which of them far, which
+/// snapshots it acknowledged. Allocates nothing once its bit sets have grown to the archive's size.
+class SentViews {
+ public:
+  /// The receiver's own avatar: the one sent with kAvatarYours.
+  void set_owner(uint32_t avatar_id) { owner_ = avatar_id; }
+  /// Records the view of `snapshot`: the archived avatars at `indices` (into the archive's slot of
+  /// `snapshot`, `archived` avatars long), `far[k]` non-zero for those sent with kAvatarFar
+  /// (empty: none).
+  void record(uint32_t snapshot, size_t archived, std::span<const uint32_t> indices, std::span<const uint8_t> far);
+  /// The receiver holds `snapshot` whole: later views may be coded against it.
+  void acknowledge(uint32_t snapshot);
+  /// For each avatar of `view` (sorted by id), the newest acknowledged state the receiver holds of
+  /// it, at most kMaxReferenceBack snapshots before `snapshot`, as it was sent (flags included).
+  void references(const SnapshotArchive& archive, std::span<const wire::AvatarState> view, uint32_t snapshot,
+                  std::vector<AvatarReference>& out) const;
+  void clear();
+  size_t bytes() const;
+
+ private:
+  struct Slot {
+    uint32_t snapshot = 0;
+    bool valid = false;
+    bool acknowledged = false;
+    std::vector<uint64_t> bits;  ///< Archive index i: bit 2i in view, bit 2i + 1 far.
+  };
+  std::array<Slot, SnapshotArchive::kSlots> slots_;
+  uint32_t owner_ = 0;
+};
+
+/// A sender with one receiver whose views are whole snapshots, flags included (tests, tools, the
+/// fuzzer's seeds): each view archived as it is.
+class WholeViewSender {
+ public:
+  /// The view sent as `snapshot` (sorted by id).
+  void remember(uint32_t snapshot, uint32_t server_tick, std::span<const wire::AvatarState> view);
+  void acknowledge(uint32_t snapshot) { views_.acknowledge(snapshot); }
+  /// encoder.plan() of `view` against what was acknowledged.
+  void plan(AvatarDeltaEncoder& encoder, std::span<const wire::AvatarState> view, uint32_t snapshot,
+            uint32_t server_tick);
+
+ private:
+  SnapshotArchive archive_;
+  SentViews views_;
+  std::vector<uint32_t> indices_;
+  std::vector<AvatarReference> references_;
+};
+
+}  // namespace foresight::protocol
