@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include <csignal>
+#include <malloc.h>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -28,6 +29,12 @@ enum ExitCode : int {
 };
 
 int main(int argc, char** argv) {
+  // Motion trees' node pools grow and shrink with the work (motion_tree.hpp). glibc serves
+  // blocks over the mmap threshold with their own mappings, returned to the system when freed,
+  // but raises that threshold (up to 32 MB) each time such a block is freed, after which the
+  // pools come from the heap and their freed memory stays resident. A fixed threshold keeps
+  // every large pool in its own mapping, so the server's resident memory follows its trees.
+  mallopt(M_MMAP_THRESHOLD, 64 * 1024);
   using namespace foresight;
   server::ServerCommandLine cli;
   CLI::App app{"Foresight authoritative server: players and bots connect over UDP"};

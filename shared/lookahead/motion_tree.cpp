@@ -1,7 +1,9 @@
 #include "lookahead/motion_tree.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
+#include <utility>
 
 namespace foresight {
 
@@ -20,6 +22,12 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
 }
 
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
+  // Nothing survives a reset, so a pool that has been far too large for a while is simply
+  // replaced (no nodes to move).
+  if (shrink_due()) {
+    const auto capacity = static_cast<size_t>(shrunk_capacity());
+    adopt_storage(std::vector<MotionTreeNode>(capacity), std::vector<uint32_t>(capacity));
+  }
   priorities_stale_ = false;
   root_sums_.clear();  // the root alone: no branches
   sums_valid_ = true;
@@ -45,8 +53,80 @@ void MotionTree::reserve_nodes(int n) {
   const size_t size = static_cast<size_t>(n);
   nodes_.resize(size);
   order_.resize(size);
-  queue_.reserve(size);
-  visit_stack_.reserve(size);
+  queue_.reserve(size);  // the walk stack grows on its own: it holds far fewer than the nodes
+}
+
+// Memory follows the work both ways: the pool doubles as the budget pays for nodes, and once the
+// tree has stayed at half of it or less for kShrinkCheckEvents re-roots and resets (a few seconds
+// of play) it is cut to the power of two above that peak and an eighth. Without this, every avatar kept the largest tree it ever
+// had: players joining an empty server get the whole budget and fill 8192 nodes in their first
+// second, and kept 590 KB each after the server filled up and their trees held 400.
+bool MotionTree::shrink_due() {
+  peak_nodes_ = std::max(peak_nodes_, num_nodes_);
+  if (++events_since_check_ < kShrinkCheckEvents) return false;
+  const bool due = config_.shrink_pool && node_capacity() > kInitialNodes && 2 * peak_nodes_ <= node_capacity();
+  if (!due) {  // the next window starts now (a due shrink starts it in adopt_storage)
+    events_since_check_ = 0;
+    peak_nodes_ = num_nodes_;
+  }
+  return due;
+}
+
+int MotionTree::shrunk_capacity() const {
+  // An eighth over the peak, so a tree that keeps its size does not double again at once.
+  return std::clamp(static_cast<int>(std::bit_ceil(static_cast<unsigned>(peak_nodes_ + peak_nodes_ / 8 + 1))), kInitialNodes,
+                    config_.max_nodes);
+}
+
+void MotionTree::adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<uint32_t> order) {
+  // Fresh vectors (a resize would keep the old capacity): the old ones are freed here.
+  const size_t capacity = nodes.size();
+  nodes_.swap(nodes);
+  order_.swap(order);
+  std::vector<QueueEntry>().swap(queue_);
+  std::vector<int>().swap(visit_stack_);
+  queue_.reserve(capacity);
+  events_since_check_ = 0;
+  peak_nodes_ = 0;
+}
+
+void MotionTree::compact(int capacity) {
+  // The live nodes in preorder from the root get indices 0..n-1; links are renumbered, creation
+  // orders kept (ties are broken by them, never by index, so the tree behaves exactly as before).
+  std::vector<int32_t> new_index(nodes_.size(), -1);
+  std::vector<int32_t> live;
+  live.reserve(static_cast<size_t>(num_nodes_));
+  visit_stack_.clear();
+  visit_stack_.push_back(root_);
+  while (!visit_stack_.empty()) {
+    const int n = visit_stack_.back();
+    visit_stack_.pop_back();
+    new_index[static_cast<size_t>(n)] = static_cast<int32_t>(live.size());
+    live.push_back(n);
+    for (int c = nodes_[static_cast<size_t>(n)].first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
+      visit_stack_.push_back(c);
+  }
+  const auto renumber = [&](int32_t i) { return i < 0 ? i : new_index[static_cast<size_t>(i)]; };
+  std::vector<MotionTreeNode> nodes(static_cast<size_t>(capacity));
+  std::vector<uint32_t> order(static_cast<size_t>(capacity));
+  for (size_t k = 0; k < live.size(); ++k) {
+    MotionTreeNode n = nodes_[static_cast<size_t>(live[k])];
+    n.parent = renumber(n.parent);
+    n.first_child = renumber(n.first_child);
+    n.next_sibling = renumber(n.next_sibling);
+    nodes[k] = n;
+    order[k] = order_[static_cast<size_t>(live[k])];
+  }
+  const int root = new_index[static_cast<size_t>(root_)];
+  const int count = static_cast<int>(live.size());
+  adopt_storage(std::move(nodes), std::move(order));
+  root_ = root;
+  free_head_ = -1;
+  first_unused_ = count;
+  // The leaf queue (emptied above) and the branch sums named old indices: advance_root left them
+  // stale, and they are rebuilt from the tree before their next use.
+  assert(priorities_stale_ && !sums_valid_);
+  root_sums_.clear();
 }
 
 int MotionTree::allocate() {
@@ -335,7 +415,9 @@ int MotionTree::advance_root(int child) {
   for_each_node([&](int index, const MotionTreeNode&) { --nodes_[static_cast<size_t>(index)].depth; });
   priorities_stale_ = true;
   sums_valid_ = false;
-  return r.transition;
+  const int transition = r.transition;
+  if (shrink_due()) compact(shrunk_capacity());
+  return transition;
 }
 
 int MotionTree::max_depth_reached() const {

@@ -9,9 +9,10 @@
 //
 // Memory: nodes live in a pool with a free list and the leaf queue is a heap over a vector. The
 // pool starts at kInitialNodes and doubles when the budget pays for more nodes than it holds, up
-// to max_nodes (a tree holds about 600 nodes at 200 players: 40 KB rather than 590 KB for 8192);
-// once it has grown to an avatar's working size nothing is allocated while growing, advancing or
-// re-prioritising.
+// to max_nodes; a pool that stays at most half full for a while is cut back (compact(): the
+// live nodes renumbered into a smaller pool at a re-root). So a tree's memory follows the nodes
+// its budget pays for (about 400 at 200 players, rather than a pool of 8192 for everyone).
+// Nothing is allocated per node: only these few resizes.
 // Determinism: the same inputs and the same expansion budget give the same tree, bit for bit
 // (ties are broken by the order nodes were created).
 #include "library/motion_library.hpp"
@@ -30,6 +31,8 @@ namespace foresight {
 
 struct MotionTreeConfig {
   int max_nodes = 8192;        ///< Nodes at most (the pool grows to this). [Limit: >= 2]
+  /// false: the pool only grows (a test compares a shrinking tree with one that keeps its pool).
+  bool shrink_pool = true;
   int max_depth = 8;           ///< Root is depth 0; nodes deeper than this are never created.
   Strategy strategy = Strategy::kCommand;
   /// Weight of a node at depth d (1-based below the root) in the branch sum of 4.3; decreasing.
@@ -210,7 +213,12 @@ class MotionTree {
   }
 
   static constexpr int kInitialNodes = 256;
+  static constexpr int kShrinkCheckEvents = 8;  ///< Re-roots and resets between shrink checks.
   void reserve_nodes(int n);
+  bool shrink_due();
+  int shrunk_capacity() const;
+  void adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<uint32_t> order);
+  void compact(int capacity);
   int allocate();
   int branch_slot_of(int index) const;
   static int64_t branch_weight(const std::array<float, 8>& weights, const MotionTreeNode& n);
@@ -240,6 +248,8 @@ class MotionTree {
   int free_head_ = -1;
   int first_unused_ = 0;  ///< Nodes from here on were never allocated since reset().
   int num_nodes_ = 0;
+  int peak_nodes_ = 0;          ///< Most nodes seen at a re-root or reset since the last shrink check.
+  int events_since_check_ = 0;  ///< Re-roots and resets since then.
   /// Per child of the root: its branch sum, kept up to date as nodes are added. Valid while
   /// sums_valid_ (advance_root changes every depth: the next refresh_priorities sums again).
   struct RootChildSum {

@@ -140,6 +140,57 @@ TEST(MotionTree, NodeStorageGrowsWithTheTreeUpToTheCap) {
   EXPECT_EQ(counted, t.num_nodes());
 }
 
+// ...and back down: a tree that filled 8192 nodes (a player alone on the server) and then holds
+// a few hundred (the server filled up) gives the pool back at a re-root; the tree is the same
+// tree after the move (nodes renumbered, links and creation orders kept), and grows on exactly as
+// a tree that never moved would: the same choices, node for node.
+TEST(MotionTree, AnOversizedPoolIsCutBackAndTheTreeIsUnchanged) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTree t(lib, arena.world, config_for(Strategy::kCommand, 8192));
+  t.reset(walk_segment(lib), kOpen);
+  t.set_command(vec2(0.0f, 1.0f), kOpen);
+  t.grow(GrowBudget::expansions(1000000));
+  ASSERT_EQ(t.node_capacity(), 8192);
+  const size_t full_bytes = t.node_bytes();
+  // A second tree replays the same calls with a pool that never shrinks.
+  MotionTreeConfig keep = config_for(Strategy::kCommand, 8192);
+  keep.shrink_pool = false;
+  MotionTree u(lib, arena.world, keep);
+  u.reset(walk_segment(lib), kOpen);
+  u.set_command(vec2(0.0f, 1.0f), kOpen);
+  u.grow(GrowBudget::expansions(1000000));
+  int shrinks = 0;
+  for (int step = 0; step < 80; ++step) {
+    const int child_t = t.select_child(), child_u = u.select_child();
+    ASSERT_GE(child_t, 0);
+    ASSERT_GE(child_u, 0);
+    EXPECT_EQ(t.node(child_t).segment, u.node(child_u).segment) << "step " << step;
+    for (MotionTree* tree : {&t, &u}) {
+      const int child = tree == &t ? child_t : child_u;
+      const Placement at = tree->node(child).start;
+      tree->advance_root(child);
+      tree->set_command(vec2(step % 10 < 5 ? 0.3f : -0.3f, 1.0f), at);
+      tree->grow(GrowBudget::expansions(12));
+    }
+    if (t.node_capacity() < u.node_capacity()) ++shrinks;
+    // Same tree, node for node, in the same walk order.
+    const auto nt = snapshot(t), nu = snapshot(u);
+    ASSERT_EQ(nt.size(), nu.size()) << "step " << step;
+    for (size_t i = 0; i < nt.size(); ++i) {
+      EXPECT_EQ(nt[i].segment, nu[i].segment) << "step " << step << ", node " << i;
+      EXPECT_EQ(nt[i].start.pos_m, nu[i].start.pos_m) << "step " << step << ", node " << i;
+      EXPECT_EQ(nt[i].match, nu[i].match) << "step " << step << ", node " << i;
+      EXPECT_EQ(nt[i].depth, nu[i].depth) << "step " << step << ", node " << i;
+    }
+  }
+  EXPECT_GT(shrinks, 0);
+  EXPECT_EQ(u.node_capacity(), 8192);
+  EXPECT_LT(t.node_bytes(), full_bytes / 8) << "the pool was cut back";
+  EXPECT_LE(t.node_capacity(), 1024);
+  EXPECT_GE(t.node_capacity(), t.num_nodes());
+}
+
 TEST(MotionTree, BudgetsCapsAndStatusesAreHonoured) {
   const auto& lib = default_library();
   const auto& arena = loaded_scene("arena");
