@@ -86,6 +86,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   reservations_.configure(scene_.bounds);
   if (!plan_spawn_places(error)) return false;
   workers_ = std::make_unique<LookaheadWorkers>(config_.threads);
+  for (int w = 0; w < workers_->threads(); ++w) snapshot_builders_.push_back(std::make_unique<SnapshotBuilder>());
   grow_deadline_.resize(static_cast<size_t>(config_.threads));
   players_.reserve(static_cast<size_t>(config_.max_players));
   tree_players_.reserve(players_.capacity() + 256);  // + fighters
@@ -713,114 +714,43 @@ void Server::send_snapshots(Clock::time_point now) {
   collect_fighter_poses();
   const bool interest = config_.interest_radius_m > 0;
   if (interest) interest_grid_.build(snapshot_positions_, config_.interest_radius_m);
-  const uint32_t server_ms = static_cast<uint32_t>(ms_between(started_, now));
-  for (size_t receiver = 0; receiver < by_id_.size(); ++receiver) {
-    Player& p = *players_[by_id_[receiver]];
+  SnapshotFrame frame;
+  frame.snapshot = snapshot_tick_;
+  frame.server_tick = static_cast<uint32_t>(tick_);
+  frame.server_ms = static_cast<uint32_t>(ms_between(started_, now));
+  frame.states = snapshot_states_;
+  frame.positions = snapshot_positions_;
+  frame.terrain = snapshot_terrain_;
+  frame.terrain_before = terrain_before_;
+  frame.fighters = fighter_poses_;
+  frame.fighter_rotations = fighter_rotations_;
+  frame.events = snapshot_events_;
+  frame.interest = interest ? &interest_grid_ : nullptr;
+  frame.interest_radius_m = config_.interest_radius_m;
+  frame.far_radius_m = config_.far_radius_m;
+  frame.far_every = config_.far_every;
+  frame.archive = &snapshot_archive_;
+  snapshot_receivers_.clear();
+  for (size_t index = 0; index < by_id_.size(); ++index) {
+    Player& p = *players_[by_id_[index]];
     if (p.is_fighter()) continue;
-    build_view(receiver, interest);
-    p.sent_views.references(snapshot_archive_, view_states_, snapshot_tick_, view_references_);
-    avatar_encoder_.plan(view_states_, snapshot_tick_, static_cast<uint32_t>(tick_), view_references_);
-    plan_snapshot_parts();
-    const auto parts = static_cast<uint8_t>(snapshot_parts_.size());
-    for (size_t part = 0; part < snapshot_parts_.size(); ++part) {
-      const SnapshotPart& plan = snapshot_parts_[part];
-      auto& fbb = writer_.begin();
-      const auto avatar_bits = fbb.CreateVector(part_bits_[part]);
-      flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<wire::FighterPose>>> fighters = 0;
-      if (plan.fighters_end > plan.fighters_begin) {
-        fighter_offsets_.clear();
-        for (size_t f = plan.fighters_begin; f < plan.fighters_end; ++f) {
-          const FighterPoseOut& fp = fighter_poses_[f];
-          const auto rotations = fbb.CreateVector(fighter_rotations_.data() + fp.first_rotation, fp.num_rotations);
-          fighter_offsets_.push_back(wire::CreateFighterPose(fbb, fp.avatar, fp.morphology, fp.pelvis_mm[0],
-                                                              fp.pelvis_mm[1], fp.pelvis_mm[2], rotations));
-        }
-        fighters = fbb.CreateVector(fighter_offsets_);
-      }
-      flatbuffers::Offset<flatbuffers::Vector<const wire::TerrainBody*>> terrain_bodies = 0;
-      const uint32_t terrain_begin = view_terrain_before_[plan.avatars_begin];
-      const uint32_t terrain_end = view_terrain_before_[plan.avatars_end];
-      if (terrain_end > terrain_begin)
-        terrain_bodies = fbb.CreateVectorOfStructs(view_terrain_.data() + terrain_begin, terrain_end - terrain_begin);
-      flatbuffers::Offset<flatbuffers::Vector<const wire::StrikeEventState*>> events = 0;
-      if (plan.events && !snapshot_events_.empty())
-        events = fbb.CreateVectorOfStructs(snapshot_events_.data(), snapshot_events_.size());
-      send_sealed(p, writer_.finish(wire::CreateSnapshot(fbb, snapshot_tick_, static_cast<uint8_t>(part), parts,
-                                                         p.last_input_seq, p.echo_client_time_ms, server_ms, fighters,
-                                                         events, terrain_bodies,
-                                                         static_cast<uint16_t>(plan.avatars_end - plan.avatars_begin),
-                                                         avatar_bits)));
-    }
-    // What was sent (all of the view unless it ran past the 255 parts), for later references.
-    const size_t sent_avatars = snapshot_parts_.back().avatars_end;
-    p.sent_views.record(snapshot_tick_, snapshot_states_.size(), std::span(view_index_).first(sent_avatars),
-                        std::span(view_far_).first(sent_avatars));
-    counters_.avatars_sent += sent_avatars;
-    counters_.avatars_referenced += avatar_encoder_.referenced();
+    snapshot_receivers_.push_back({static_cast<uint32_t>(index), p.avatar_id, p.last_input_seq, p.echo_client_time_ms,
+                                   &p.endpoint, &p.sealer, &p.sent_views});
   }
-}
-
-// What one client gets (interest.hpp): the avatars near its own every snapshot, the far ones when
-// due (flagged kAvatarFar), its own flagged kAvatarYours; their terrain bodies with them.
-void Server::build_view(size_t receiver, bool interest) {
-  const uint32_t n = static_cast<uint32_t>(snapshot_states_.size());
-  if (interest) {
-    const bool far_due = config_.far_every > 0 &&
-                         (snapshot_tick_ + players_[by_id_[receiver]]->avatar_id) % static_cast<uint32_t>(config_.far_every) == 0;
-    select_interest(interest_grid_, snapshot_positions_, static_cast<uint32_t>(receiver), config_.interest_radius_m,
-                    far_due, config_.far_radius_m, view_index_, view_far_);
-  } else {
-    view_index_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) view_index_[i] = i;
-    view_far_.assign(n, 0);
+  // Clients in parallel on the look-ahead workers, each worker with its own builder and batch.
+  workers_->run(static_cast<int>(snapshot_receivers_.size()), [this, &frame](int item, int worker) {
+    snapshot_builders_[static_cast<size_t>(worker)]->serve(frame, snapshot_receivers_[static_cast<size_t>(item)],
+                                                           socket_);
+  });
+  for (auto& builder : snapshot_builders_) {
+    builder->flush(socket_);
+    const SnapshotBuilder::Counts c = builder->take_counts();
+    counters_.avatars_sent += c.avatars_sent;
+    counters_.avatars_referenced += c.avatars_referenced;
+    counters_.packets_out += c.datagrams.sent;
+    counters_.bytes_out += c.datagrams.bytes;
+    counters_.send_failures += c.datagrams.failed;
   }
-  view_states_.clear();
-  view_terrain_.clear();
-  view_terrain_before_.clear();
-  for (size_t k = 0; k < view_index_.size(); ++k) {
-    const uint32_t i = view_index_[k];
-    view_terrain_before_.push_back(static_cast<uint32_t>(view_terrain_.size()));
-    wire::AvatarState a = snapshot_states_[i];
-    a.mutate_flags(static_cast<uint8_t>(a.flags() | (i == receiver ? protocol::kAvatarYours : 0) |
-                                        (view_far_[k] ? protocol::kAvatarFar : 0)));
-    view_states_.push_back(a);
-    for (uint32_t t = terrain_before_[i]; t < terrain_before_[i + 1]; ++t) view_terrain_.push_back(snapshot_terrain_[t]);
-  }
-  view_terrain_before_.push_back(static_cast<uint32_t>(view_terrain_.size()));
-}
-
-// Parts of one client's view under the datagram budget: fighters' poses first, the strike events
-// in part 0, then the avatars, packed (avatar_delta.hpp) into part_bits_ as they are planned.
-// Sizes are upper bounds of what FlatBuffers writes (tables: vtable and alignment).
-void Server::plan_snapshot_parts() {
-  // Header, vectors, Snapshot table, and the Sealed wrapping around it.
-  constexpr size_t kBudget = protocol::kMaxDatagramBytes - 100 - protocol::kSealOverheadBytes;
-  snapshot_parts_.clear();
-  size_t fighter = 0, avatar = 0;
-  do {
-    SnapshotPart part;
-    part.events = snapshot_parts_.empty();
-    size_t bytes = part.events ? snapshot_events_.size() * sizeof(wire::StrikeEventState) : 0;
-    part.fighters_begin = fighter;
-    while (fighter < fighter_poses_.size() &&
-           bytes + 64 + 4 * fighter_poses_[fighter].num_rotations <= kBudget)
-      bytes += 64 + 4 * fighter_poses_[fighter++].num_rotations;
-    part.fighters_end = fighter;
-    part.avatars_begin = avatar;
-    if (part_bits_.size() <= snapshot_parts_.size()) part_bits_.resize(snapshot_parts_.size() + 1);
-    protocol::BitWriter bits(part_bits_[snapshot_parts_.size()]);
-    avatar_encoder_.begin_part(bits);
-    while (avatar < view_states_.size() && avatar - part.avatars_begin < UINT16_MAX) {
-      const size_t body = (view_terrain_before_[avatar + 1] - view_terrain_before_[avatar]) * sizeof(wire::TerrainBody);
-      if (bytes + bits.bytes() + protocol::AvatarDeltaEncoder::kMaxAvatarBytes + body > kBudget) break;
-      avatar_encoder_.add(avatar, bits);
-      bytes += body;
-      ++avatar;
-    }
-    bits.finish();
-    part.avatars_end = avatar;
-    snapshot_parts_.push_back(part);
-  } while ((fighter < fighter_poses_.size() || avatar < view_states_.size()) && snapshot_parts_.size() < 255);
 }
 
 // ---------------------------------------------------------------------------------------------

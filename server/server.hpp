@@ -26,6 +26,7 @@
 #include "lookahead_workers.hpp"
 #include "protocol/avatar_delta.hpp"
 #include "protocol/sent_views.hpp"
+#include "snapshot_builder.hpp"
 #include "protocol/cookie.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/session_crypto.hpp"
@@ -182,8 +183,6 @@ class Server {
   vec2 fighter_way(FighterNpc& npc, vec2 from, vec2 to, double now_s);
   void animate_fighters(int64_t frames_due);
   void collect_fighter_poses();
-  void build_view(size_t receiver, bool interest);
-  void plan_snapshot_parts();
   void judge_strike(Player& fighter, const StrikeFrame& frame);
   vec3 head_position(const LookaheadAvatar& avatar);
   // Terrain avatars (server_terrain.cpp).
@@ -236,44 +235,24 @@ class Server {
   Reservations reservations_;
   std::unique_ptr<LookaheadWorkers> workers_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
-  // Fighters' poses and strike events for the snapshot being sent (server_fighters.cpp), and how
-  // the snapshot is cut into parts; all reused.
-  struct FighterPoseOut {
-    uint32_t avatar = 0;
-    uint8_t morphology = 0;
-    int32_t pelvis_mm[3] = {0, 0, 0};
-    size_t first_rotation = 0, num_rotations = 0;
-  };
-  struct SnapshotPart {
-    size_t fighters_begin = 0, fighters_end = 0, avatars_begin = 0, avatars_end = 0;
-    bool events = false;
-  };
+  // Fighters' poses and strike events for the snapshot being sent (server_fighters.cpp); reused.
   std::vector<FighterPoseOut> fighter_poses_;
   std::vector<uint32_t> fighter_rotations_;
   std::vector<wire::StrikeEventState> snapshot_events_;
-  std::vector<SnapshotPart> snapshot_parts_;
   std::vector<wire::TerrainBody> snapshot_terrain_;  ///< Terrain avatars' bodies, in snapshot_states_ order.
   std::vector<uint32_t> terrain_before_;             ///< Per snapshot avatar (and one past): bodies before it.
   std::vector<vec2> snapshot_positions_;             ///< Per snapshot avatar: where it stands (interest).
   InterestGrid interest_grid_;
-  // One client's view of the snapshot (build_view), reused for every client.
-  std::vector<uint32_t> view_index_;
-  std::vector<uint8_t> view_far_;
-  std::vector<wire::AvatarState> view_states_;
-  std::vector<wire::TerrainBody> view_terrain_;
-  std::vector<uint32_t> view_terrain_before_;
   std::vector<uint32_t> by_id_;                      ///< players_ indices by avatar id (snapshot order).
   std::vector<BodyVolume> contact_bodies_;           ///< check_contacts: this frame's bodies (reused).
-  protocol::AvatarDeltaEncoder avatar_encoder_;      ///< The view's avatars, packed per part.
   /// The avatars of the last 64 snapshots, once for every client (sent_views.hpp).
   protocol::SnapshotArchive snapshot_archive_;
-  std::vector<protocol::AvatarReference> view_references_;  ///< One client's view's references (reused).
-  std::vector<std::vector<uint8_t>> part_bits_;      ///< Per part, its packed avatars (reused).
+  std::vector<SnapshotReceiver> snapshot_receivers_;                ///< This snapshot's clients (reused).
+  std::vector<std::unique_ptr<SnapshotBuilder>> snapshot_builders_;  ///< One per look-ahead worker.
   bool terrain_mode_ = false;
   terrain::TerrainAvatarConfig terrain_config_;
   std::vector<terrain::TerrainNeighbour> terrain_neighbours_;  ///< Reused per planning avatar.
   std::vector<Player*> tree_players_;                ///< Players with a motion tree, this tick.
-  std::vector<flatbuffers::Offset<wire::FighterPose>> fighter_offsets_;
   TreeSummaryWriter tree_summary_;                  ///< Reused for every TreeRequest.
   std::vector<double> grow_weight_;                 ///< Per player, reused.
   std::vector<int64_t> grow_expansions_;            ///< Per player, this tick.
