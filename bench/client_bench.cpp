@@ -12,9 +12,9 @@
 #ifdef FORESIGHT_HAVE_CLIENT
 
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "library/library_source.hpp"
 #include "library/playback.hpp"
-#include "machine_info.hpp"
 #include "renderer.hpp"
 #include "snapshot_buffer.hpp"
 
@@ -155,7 +155,7 @@ int bench_client(const ClientBenchOptions& o) {
   const double fractional_share = static_cast<double>(fractional) / static_cast<double>(std::max<size_t>(1, shown_total));
   const double extrapolated_share = static_cast<double>(extrapolated) / static_cast<double>(std::max<size_t>(1, shown_total));
 
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   std::printf("%d avatars (%d joints), default library, %zu frames at 60 fps render time in %.1f s "
               "(20 Hz snapshots, 30 Hz ticks, 100 ms delay)\n",
               o.avatars, lib.num_joints(), frames, seconds);
@@ -167,14 +167,20 @@ int bench_client(const ClientBenchOptions& o) {
               shown_mean, instances_mean, 100.0 * fractional_share, 100.0 * extrapolated_share);
   std::printf("  CPU share of a 16.7 ms frame: %.1f%%\n", 100.0 * frame_med / (1000.0 * kFrameS));
   if (o.json)
-    std::printf("{\"bench\":\"client\",\"avatars\":%d,\"joints\":%d,\"frames\":%zu,\"seconds\":%.3f,"
-                "\"sample_us_per_avatar\":%.4f,\"pose_rebuild_us_per_avatar\":%.4f,"
-                "\"sample_ms\":%.4f,\"pose_rebuild_ms\":%.4f,\"frame_ms_for_all_avatars\":%.4f,"
-                "\"frame_ms_p99\":%.4f,\"bone_instances\":%.0f,\"fractional_share\":%.3f,"
-                "\"extrapolated_share\":%.4f,%s}\n",
-                o.avatars, lib.num_joints(), frames, seconds, sample_med * per, pose_med * per,
-                sample_med / 1e3, pose_med / 1e3, frame_med, frame_p99, instances_mean,
-                fractional_share, extrapolated_share, machine_json_fields().c_str());
+    print_json_line({{"bench", "client"},
+                     {"avatars", o.avatars},
+                     {"joints", lib.num_joints()},
+                     {"frames", frames},
+                     {"seconds", rounded(seconds, 3)},
+                     {"sample_us_per_avatar", rounded(sample_med * per, 4)},
+                     {"pose_rebuild_us_per_avatar", rounded(pose_med * per, 4)},
+                     {"sample_ms", rounded(sample_med / 1e3, 4)},
+                     {"pose_rebuild_ms", rounded(pose_med / 1e3, 4)},
+                     {"frame_ms_for_all_avatars", rounded(frame_med, 4)},
+                     {"frame_ms_p99", rounded(frame_p99, 4)},
+                     {"bone_instances", rounded(instances_mean, 0)},
+                     {"fractional_share", rounded(fractional_share, 3)},
+                     {"extrapolated_share", rounded(extrapolated_share, 4)}});
   return 0;
 }
 

@@ -1,8 +1,6 @@
 #include "collision_bench.hpp"
 
-
 #include <chrono>
-#include <cstdio>
 #include <random>
 
 namespace foresight::bench {
@@ -82,22 +80,19 @@ CollisionBenchResult run_collision_bench(const CollisionWorld& world,
   return r;
 }
 
-std::string to_json(const CollisionBenchResult& r) {
-  char buf[640];
-  std::snprintf(buf, sizeof buf,
-                "{\"seconds\":%.3f,\"clip_checks\":%llu,\"frame_checks\":%llu,"
-                "\"feasible_clips\":%llu,\"early_out_clips\":%llu,"
-                "\"frame_checks_per_sec\":%.0f,\"clip_checks_per_sec\":%.0f,"
-                "\"feasible_share\":%.4f,\"early_out_share\":%.4f,\"frames_per_clip\":%.3f,"
-                "\"placements\":%llu,\"shapes\":%llu}",
-                r.seconds, static_cast<unsigned long long>(r.clip_checks),
-                static_cast<unsigned long long>(r.frame_checks),
-                static_cast<unsigned long long>(r.feasible_clips),
-                static_cast<unsigned long long>(r.early_out_clips), r.frame_checks_per_sec,
-                r.clip_checks_per_sec, r.feasible_share, r.early_out_share, r.frames_per_clip,
-                static_cast<unsigned long long>(r.placements),
-                static_cast<unsigned long long>(r.shapes));
-  return buf;
+Json to_json(const CollisionBenchResult& r) {
+  return {{"seconds", rounded(r.seconds, 3)},
+          {"clip_checks", r.clip_checks},
+          {"frame_checks", r.frame_checks},
+          {"feasible_clips", r.feasible_clips},
+          {"early_out_clips", r.early_out_clips},
+          {"frame_checks_per_sec", rounded(r.frame_checks_per_sec, 0)},
+          {"clip_checks_per_sec", rounded(r.clip_checks_per_sec, 0)},
+          {"feasible_share", rounded(r.feasible_share, 4)},
+          {"early_out_share", rounded(r.early_out_share, 4)},
+          {"frames_per_clip", rounded(r.frames_per_clip, 3)},
+          {"placements", r.placements},
+          {"shapes", r.shapes}};
 }
 
 }  // namespace foresight::bench

@@ -7,6 +7,7 @@
 // checks, and clips stopped at their first colliding frame count only the frames tested. So
 // frame_checks_per_sec is the rate of real per-frame tests over the whole timed run (including the
 // time spent in early-outs and per-clip setup), never frames skipped.
+#include "bench_json.hpp"
 #include "world/collision_check.hpp"
 
 #include <cstdint>
@@ -38,7 +39,7 @@ CollisionBenchResult run_collision_bench(const CollisionWorld& world,
                                          std::span<const SegmentCollisionShape> shapes,
                                          double seconds, std::uint64_t seed);
 
-/// One line: {"clip_checks":...,"frame_checks_per_sec":...,...} (no trailing newline).
-std::string to_json(const CollisionBenchResult& result);
+/// {"seconds":...,"clip_checks":...,"frame_checks_per_sec":...,...}: the figures, rounded.
+Json to_json(const CollisionBenchResult& result);
 
 }  // namespace foresight::bench

@@ -1,9 +1,9 @@
 // collision: the default library's (or a BVH folder's) real segment shapes, placed at random in a
 // scene, checked on one core.
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "collision_bench.hpp"
 #include "library/library_source.hpp"
-#include "machine_info.hpp"
 #include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
@@ -23,7 +23,7 @@ int bench_collision(const CollisionBenchOptions& o) {
     return 1;
   }
   const CollisionBenchResult r = run_collision_bench(world, lib.segment_shapes, o.seconds, o.seed);
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   std::printf("scene %s, library %s (%zu segment shapes), %.1f s on one thread\n",
               scene.name.c_str(), lib.name.c_str(), lib.segment_shapes.size(), r.seconds);
   std::printf("  %.1f M frame checks/s, %.2f M clip checks/s, %.1f frames tested per clip, "
@@ -31,10 +31,11 @@ int bench_collision(const CollisionBenchOptions& o) {
               r.frame_checks_per_sec / 1e6, r.clip_checks_per_sec / 1e6, r.frames_per_clip,
               100.0 * r.feasible_share, 100.0 * r.early_out_share);
   if (o.json) {
-    std::string json = to_json(r);
-    json.pop_back();  // reopen the object to add where it ran
-    std::printf("%s,\"bench\":\"collision\",\"scene\":\"%s\",\"library\":\"%s\",%s}\n", json.c_str(),
-                scene.name.c_str(), lib.name.c_str(), machine_json_fields().c_str());
+    Json j = to_json(r);
+    j["bench"] = "collision";
+    j["scene"] = scene.name;
+    j["library"] = lib.name;
+    print_json_line(std::move(j));
   }
   return 0;
 }

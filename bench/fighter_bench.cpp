@@ -3,10 +3,10 @@
 // database (fighter_retrieval_bench), adaptation per frame, reach error and foot skate
 // (fighter_adapt_bench); optionally the picture of one strike adapted on five morphologies.
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "fighter_adapt_bench.hpp"
 #include "fighter_figure.hpp"
 #include "fighter_retrieval_bench.hpp"
-#include "machine_info.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -15,7 +15,7 @@
 namespace foresight::bench {
 
 int bench_fighter(const FighterBenchOptions& o) {
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   if (!o.figure_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.figure_dir, ec);
@@ -72,13 +72,16 @@ int bench_fighter(const FighterBenchOptions& o) {
   std::printf("  support foot skate %.3f cm/s (largest drift %.3f cm), %d frames with NaN/inf\n",
               a.foot_skate_cm_per_s, a.foot_drift_cm_max, a.non_finite);
   if (o.json) {
-    // The retrieval object without its closing brace, then the adaptation figures.
-    std::string r = to_json(retrieval);
-    if (!r.empty() && r.back() == '}') r.pop_back();
-    std::printf("%s,\"adapt_us_per_frame_p50\":%.3f,\"adapt_us_per_frame_p99\":%.3f,\"reach_error_cm_p50\":%.3f,"
-                "\"reach_error_cm_p99\":%.3f,\"foot_skate_cm_per_s\":%.4f,\"adapt_frames\":%d,\"adapt_non_finite\":%d,%s}\n",
-                r.c_str(), a.adapt_us_per_frame_p50, a.adapt_us_per_frame_p99, a.reach_error_cm_p50,
-                a.reach_error_cm_p99, a.foot_skate_cm_per_s, a.frames, a.non_finite, machine_json_fields().c_str());
+    // The retrieval figures, then the adaptation figures.
+    Json j = to_json(retrieval);
+    j["adapt_us_per_frame_p50"] = rounded(a.adapt_us_per_frame_p50, 3);
+    j["adapt_us_per_frame_p99"] = rounded(a.adapt_us_per_frame_p99, 3);
+    j["reach_error_cm_p50"] = rounded(a.reach_error_cm_p50, 3);
+    j["reach_error_cm_p99"] = rounded(a.reach_error_cm_p99, 3);
+    j["foot_skate_cm_per_s"] = rounded(a.foot_skate_cm_per_s, 4);
+    j["adapt_frames"] = a.frames;
+    j["adapt_non_finite"] = a.non_finite;
+    print_json_line(std::move(j));
   }
   return a.non_finite == 0 ? 0 : 1;
 }

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <system_error>
 #include <vector>
 
@@ -88,14 +89,16 @@ RetrievalTiming time_database(const FighterDatabase& db, const FighterRetrievalB
   return t;
 }
 
-std::string timing_json(const char* prefix, const RetrievalTiming& t) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "\"%sus_p50\":%.3f,\"%sus_p99\":%.3f,\"%sus_max\":%.3f,\"%sentries\":%d,\"%sposes\":%d,"
-                "\"%sclusters\":%d,\"%sprepare_s\":%.3f,\"%sin_cluster_share\":%.3f",
-                prefix, t.us_p50, prefix, t.us_p99, prefix, t.us_max, prefix, t.entries, prefix, t.poses, prefix,
-                t.clusters, prefix, t.prepare_s, prefix, t.in_cluster_share);
-  return buf;
+// One database's figures into `j`, every key starting with `prefix`.
+void add_timing(Json& j, const std::string& prefix, const RetrievalTiming& t) {
+  j[prefix + "us_p50"] = rounded(t.us_p50, 3);
+  j[prefix + "us_p99"] = rounded(t.us_p99, 3);
+  j[prefix + "us_max"] = rounded(t.us_max, 3);
+  j[prefix + "entries"] = t.entries;
+  j[prefix + "poses"] = t.poses;
+  j[prefix + "clusters"] = t.clusters;
+  j[prefix + "prepare_s"] = rounded(t.prepare_s, 3);
+  j[prefix + "in_cluster_share"] = rounded(t.in_cluster_share, 3);
 }
 
 std::string timing_line(const char* name, const RetrievalTiming& t) {
@@ -145,13 +148,15 @@ FighterRetrievalBenchResult run_fighter_retrieval_bench(const FighterRetrievalBe
   return result;
 }
 
-std::string to_json(const FighterRetrievalBenchResult& r) {
-  char head[256];
-  std::snprintf(head, sizeof head, "{\"retrieval_default_entries\":%d,\"retrieval_mocap_entries\":%d,\"retrieval_padded_entries\":%d,",
-                r.default_entries, r.mocap_entries, r.padded_entries);
-  return std::string(head) + timing_json("retrieval_", r.small) + "," + timing_json("retrieval_10k_", r.large) + "," +
-         timing_json("retrieval_10k_capped_", r.large_capped) + ",\"retrieval_10k_cap_max_clusters\":" +
-         std::to_string(r.capped_clusters) + "}";
+Json to_json(const FighterRetrievalBenchResult& r) {
+  Json j = {{"retrieval_default_entries", r.default_entries},
+            {"retrieval_mocap_entries", r.mocap_entries},
+            {"retrieval_padded_entries", r.padded_entries}};
+  add_timing(j, "retrieval_", r.small);
+  add_timing(j, "retrieval_10k_", r.large);
+  add_timing(j, "retrieval_10k_capped_", r.large_capped);
+  j["retrieval_10k_cap_max_clusters"] = r.capped_clusters;
+  return j;
 }
 
 std::string describe(const FighterRetrievalBenchResult& r) {

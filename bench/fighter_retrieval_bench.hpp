@@ -4,6 +4,7 @@
 // mocap strikes when ../shared/mocap is there, padded with synthetic variants) and on a synthetic
 // 10,000-entry one. Queries are generated before timing; each query is timed on its own with
 // steady_clock (about 20-30 ns of clock overhead included in every figure).
+#include "bench_json.hpp"
 #include "fighter/pose_clusters.hpp"
 
 #include <cstdint>
@@ -53,9 +54,9 @@ struct FighterRetrievalBenchResult {
 
 FighterRetrievalBenchResult run_fighter_retrieval_bench(const FighterRetrievalBenchConfig& config);
 
-/// {"retrieval_us_p50":..,"retrieval_us_p99":..,"retrieval_10k_us_p50":..,...} without braces'
-/// neighbours: one JSON object, no trailing newline. retrieval_us_* are the small database's.
-std::string to_json(const FighterRetrievalBenchResult& result);
+/// {"retrieval_default_entries":..,"retrieval_us_p50":..,"retrieval_10k_us_p50":..,...}: one JSON
+/// object, the figures rounded. retrieval_us_* are the small database's.
+Json to_json(const FighterRetrievalBenchResult& result);
 
 /// Human-readable lines (each ending with a newline).
 std::string describe(const FighterRetrievalBenchResult& result);

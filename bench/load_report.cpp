@@ -1,6 +1,7 @@
 // foresight-bench load-report: the table and chart of docs/PERFORMANCE.md's load test, from the
 // JSON lines `foresight-bots --json` printed for each bot count (scripts/loadtest writes them).
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "lab/svg_plot.hpp"
 #include "machine_info.hpp"
 
@@ -54,7 +55,8 @@ int bench_load_report(const LoadReportOptions& o) {
   std::ostringstream csv;
   for (const char* c : kColumns) csv << (c == kColumns[0] ? "" : ",") << c;
   csv << "\n";
-  std::printf("machine: %s\n|", machine_description().c_str());
+  print_machine_line();
+  std::printf("|");
   for (const char* c : kColumns) std::printf(" %s |", c);
   std::printf("\n|");
   for (size_t i = 0; i < std::size(kColumns); ++i) std::printf("---|");

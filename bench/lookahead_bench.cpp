@@ -2,9 +2,9 @@
 // random command, on one thread. One expansion = one successor placed, collision-checked over all
 // its frames and prioritised (MotionTree::grow's count).
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "library/library_source.hpp"
 #include "lookahead/motion_tree.hpp"
-#include "machine_info.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 
@@ -67,7 +67,7 @@ int bench_lookahead(const LookaheadBenchOptions& o) {
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   const double eps = static_cast<double>(expansions) / seconds;
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   std::printf("scene %s, strategy %s, %lld trees of %d expansions in %.1f s on one thread\n",
               scene.name.c_str(), o.strategy.c_str(), static_cast<long long>(trees),
               o.expansions_per_tree, seconds);
@@ -77,13 +77,15 @@ int bench_lookahead(const LookaheadBenchOptions& o) {
               static_cast<double>(frame_checks) / seconds / 1e6, size_sum / static_cast<double>(trees),
               MotionTree::bytes_per_node());
   if (o.json)
-    std::printf("{\"bench\":\"lookahead\",\"scene\":\"%s\",\"strategy\":\"%s\",\"seconds\":%.3f,"
-                "\"expansions_per_sec\":%.0f,\"nodes_per_sec\":%.0f,\"frame_checks_per_sec\":%.0f,"
-                "\"mean_tree_nodes\":%.1f,\"nodes_bytes\":%zu,%s}\n",
-                scene.name.c_str(), o.strategy.c_str(), seconds, eps,
-                static_cast<double>(nodes) / seconds, static_cast<double>(frame_checks) / seconds,
-                size_sum / static_cast<double>(trees), MotionTree::bytes_per_node(),
-                machine_json_fields().c_str());
+    print_json_line({{"bench", "lookahead"},
+                     {"scene", scene.name},
+                     {"strategy", o.strategy},
+                     {"seconds", rounded(seconds, 3)},
+                     {"expansions_per_sec", rounded(eps, 0)},
+                     {"nodes_per_sec", rounded(static_cast<double>(nodes) / seconds, 0)},
+                     {"frame_checks_per_sec", rounded(static_cast<double>(frame_checks) / seconds, 0)},
+                     {"mean_tree_nodes", rounded(size_sum / static_cast<double>(trees), 1)},
+                     {"nodes_bytes", MotionTree::bytes_per_node()}});
   return 0;
 }
 

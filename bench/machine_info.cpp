@@ -35,15 +35,6 @@ std::string build_type() {
 #endif
 }
 
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string machine_description() {
@@ -51,10 +42,11 @@ std::string machine_description() {
          " logical cores, " + compiler() + ", " + build_type() + " build";
 }
 
-std::string machine_json_fields() {
-  return "\"cpu\":\"" + escaped(cpu_model()) + "\",\"cores\":" +
-         std::to_string(std::thread::hardware_concurrency()) + ",\"compiler\":\"" +
-         escaped(compiler()) + "\",\"build\":\"" + build_type() + "\"";
+nlohmann::ordered_json machine_json() {
+  return {{"cpu", cpu_model()},
+          {"cores", std::thread::hardware_concurrency()},
+          {"compiler", compiler()},
+          {"build", build_type()}};
 }
 
 }  // namespace foresight::bench

@@ -1,8 +1,8 @@
 // bvh and graph: the offline half (loading and graph building), timed.
 #include "anim/bvh_import.hpp"
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "library/library_source.hpp"
-#include "machine_info.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -51,14 +51,17 @@ int bench_bvh(const BvhBenchOptions& o) {
   }
   const double size_kib = static_cast<double>(std::filesystem::file_size(file)) / 1024.0;
   const double p = median(parse_ms), i = median(import_ms);
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   std::printf("%s (%.0f KiB, %d frames): parse %.2f ms, import %.2f ms (median of %d)\n",
               file.filename().c_str(), size_kib, frames, p, i, o.runs);
   if (o.json)
-    std::printf("{\"bench\":\"bvh\",\"file\":\"%s\",\"kib\":%.0f,\"frames\":%d,\"parse_ms\":%.3f,"
-                "\"import_ms\":%.3f,\"parse_mib_per_sec\":%.1f,%s}\n",
-                file.filename().c_str(), size_kib, frames, p, i, size_kib / 1024.0 / (p / 1000.0),
-                machine_json_fields().c_str());
+    print_json_line({{"bench", "bvh"},
+                     {"file", file.filename().string()},
+                     {"kib", rounded(size_kib, 0)},
+                     {"frames", frames},
+                     {"parse_ms", rounded(p, 3)},
+                     {"import_ms", rounded(i, 3)},
+                     {"parse_mib_per_sec", rounded(size_kib / 1024.0 / (p / 1000.0), 1)}});
   return 0;
 }
 
@@ -81,17 +84,20 @@ int bench_graph(const GraphBenchOptions& o) {
     for (const Clip& c : lib.clips) frames += static_cast<size_t>(c.num_frames);
   }
   const double ms = median(build_ms);
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   std::printf("%zu clips, %zu frames: load + automatic graph + compile %.0f ms (median of %d); "
               "%lld frame pairs compared (%.1f M/s); graph %d nodes, %d edges\n",
               clips, frames, ms, o.runs, report.frame_pairs_compared,
               static_cast<double>(report.frame_pairs_compared) / (ms * 1000.0), report.segments,
               report.edges);
   if (o.json)
-    std::printf("{\"bench\":\"graph\",\"clips\":%zu,\"frames\":%zu,\"build_ms\":%.1f,"
-                "\"frame_pairs\":%lld,\"nodes\":%d,\"edges\":%d,%s}\n",
-                clips, frames, ms, report.frame_pairs_compared, report.segments, report.edges,
-                machine_json_fields().c_str());
+    print_json_line({{"bench", "graph"},
+                     {"clips", clips},
+                     {"frames", frames},
+                     {"build_ms", rounded(ms, 1)},
+                     {"frame_pairs", report.frame_pairs_compared},
+                     {"nodes", report.segments},
+                     {"edges", report.edges}});
   return 0;
 }
 

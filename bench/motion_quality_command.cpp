@@ -2,10 +2,10 @@
 // stage and steering with it (the default), and every shown pose is measured (lab/motion_quality.hpp,
 // docs/MOTION_QUALITY.md).
 #include "bench_commands.hpp"
+#include "bench_json.hpp"
 #include "lab/lab_experiments.hpp"
 #include "lab/motion_quality.hpp"
 #include "library/library_source.hpp"
-#include "machine_info.hpp"
 #include "world/data_paths.hpp"
 
 #include <nlohmann/json.hpp>
@@ -39,7 +39,7 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
     std::fprintf(stderr, "foresight-bench motion-quality: %s\n", error.c_str());
     return 1;
   }
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   std::printf("scene %s (goal %s), library %s, %d closed-loop player seeds per controller, pop threshold %.1f mm/frame^2\n",
               scene.name.c_str(), o.goal.empty() ? scene.goals.front().name.c_str() : o.goal.c_str(), lib.name.c_str(),
               o.seeds, 1000.0 * results.front().pop_threshold_m);
@@ -55,9 +55,7 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
       row["name"] = r.controller;
       j["controllers"].push_back(row);
     }
-    std::string text = j.dump();
-    text.pop_back();  // reopen the object for the machine fields
-    std::printf("%s,%s}\n", text.c_str(), machine_json_fields().c_str());
+    print_json_line(j);  // j's keys in their (alphabetical) order, then where it ran
   }
   return 0;
 }

@@ -3,7 +3,6 @@
 #include "math/splitmix64.hpp"
 
 #include "lab/lab_experiments.hpp"
-#include "machine_info.hpp"
 #include "terrain/terrain_walker.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
@@ -218,47 +217,43 @@ TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options) {
   return r;
 }
 
-std::string to_json(const TerrainBenchResult& r) {
-  char buf[1024];
-  std::snprintf(buf, sizeof buf,
-                "{\"footstep_plan_us_p50\":%.2f,\"footstep_plan_us_p99\":%.2f,"
-                "\"footstep_plan_us_max\":%.2f,\"scene_plan_us_p50\":%.2f,"
-                "\"synthetic_plan_us_p50\":%.2f,\"profile_cut_us_p50\":%.2f,\"success_rate\":%.4f,"
-                "\"paths\":%d,\"paths_completed\":%d,\"scene_paths_rejected\":%d,\"plans\":%d,"
-                "\"plans_failed\":%d,\"steps\":%d,\"collisions\":%d,\"non_finite\":%d,"
-                "\"configs_per_plan\":%.2f,\"step_checks_per_plan\":%.2f",
-                r.footstep_plan_us_p50, r.footstep_plan_us_p99, r.footstep_plan_us_max,
-                r.scene_plan_us_p50, r.synthetic_plan_us_p50, r.profile_cut_us_p50, r.success_rate,
-                r.paths, r.paths_completed, r.scene_paths_rejected, r.plans, r.plans_failed,
-                r.steps, r.collisions, r.non_finite, r.configs_per_plan, r.step_checks_per_plan);
-  std::string out = buf;
-  out += ",\"failures\":{";
-  bool first = true;
-  for (size_t k = 0; k < r.failures.size(); ++k) {
-    if (r.failures[k] == 0) continue;
-    out += first ? "" : ",";
-    first = false;
-    out += "\"";
-    out += footstep_status_name(static_cast<FootstepStatus>(k));
-    out += "\":" + std::to_string(r.failures[k]);
-  }
-  out += "}";
-  std::snprintf(buf, sizeof buf,
-                ",\"upper_body_plan_us_p50\":%.2f,\"upper_body_plan_us_p99\":%.2f,\"upper_body_plan_us_max\":%.2f,"
-                "\"upper_body_plans\":%d,\"upper_body_plans_failed\":%d,\"upper_body_walks\":%d,"
-                "\"upper_body_walks_completed\":%d,\"upper_body_collisions\":%d,\"upper_body_checks_per_plan\":%.1f,"
-                "\"max_waist_flexion_rad\":%.3f",
-                r.upper_body_plan_us_p50, r.upper_body_plan_us_p99, r.upper_body_plan_us_max, r.upper_body_plans,
-                r.upper_body_plans_failed, r.upper_body_walks, r.upper_body_walks_completed, r.upper_body_collisions,
-                r.upper_body_checks_per_plan, r.max_waist_flexion_rad);
-  out += buf;
-  if (!r.error.empty()) out += ",\"error\":\"" + r.error + "\"";
-  out += "}";
-  return out;
+Json to_json(const TerrainBenchResult& r) {
+  Json j = {{"footstep_plan_us_p50", rounded(r.footstep_plan_us_p50, 2)},
+            {"footstep_plan_us_p99", rounded(r.footstep_plan_us_p99, 2)},
+            {"footstep_plan_us_max", rounded(r.footstep_plan_us_max, 2)},
+            {"scene_plan_us_p50", rounded(r.scene_plan_us_p50, 2)},
+            {"synthetic_plan_us_p50", rounded(r.synthetic_plan_us_p50, 2)},
+            {"profile_cut_us_p50", rounded(r.profile_cut_us_p50, 2)},
+            {"success_rate", rounded(r.success_rate, 4)},
+            {"paths", r.paths},
+            {"paths_completed", r.paths_completed},
+            {"scene_paths_rejected", r.scene_paths_rejected},
+            {"plans", r.plans},
+            {"plans_failed", r.plans_failed},
+            {"steps", r.steps},
+            {"collisions", r.collisions},
+            {"non_finite", r.non_finite},
+            {"configs_per_plan", rounded(r.configs_per_plan, 2)},
+            {"step_checks_per_plan", rounded(r.step_checks_per_plan, 2)}};
+  Json& failures = j["failures"] = Json::object();
+  for (size_t k = 0; k < r.failures.size(); ++k)
+    if (r.failures[k] != 0) failures[std::string(footstep_status_name(static_cast<FootstepStatus>(k)))] = r.failures[k];
+  j["upper_body_plan_us_p50"] = rounded(r.upper_body_plan_us_p50, 2);
+  j["upper_body_plan_us_p99"] = rounded(r.upper_body_plan_us_p99, 2);
+  j["upper_body_plan_us_max"] = rounded(r.upper_body_plan_us_max, 2);
+  j["upper_body_plans"] = r.upper_body_plans;
+  j["upper_body_plans_failed"] = r.upper_body_plans_failed;
+  j["upper_body_walks"] = r.upper_body_walks;
+  j["upper_body_walks_completed"] = r.upper_body_walks_completed;
+  j["upper_body_collisions"] = r.upper_body_collisions;
+  j["upper_body_checks_per_plan"] = rounded(r.upper_body_checks_per_plan, 1);
+  j["max_waist_flexion_rad"] = rounded(r.max_waist_flexion_rad, 3);
+  if (!r.error.empty()) j["error"] = r.error;
+  return j;
 }
 
 int bench_terrain(const TerrainBenchCommand& command) {
-  std::printf("machine: %s\n", machine_description().c_str());
+  print_machine_line();
   const TerrainBenchResult r = run_terrain_bench(command.options);
   if (!r.error.empty()) {
     std::fprintf(stderr, "foresight-bench terrain: %s\n", r.error.c_str());
@@ -277,11 +272,7 @@ int bench_terrain(const TerrainBenchCommand& command) {
               r.upper_body_checks_per_plan, r.max_waist_flexion_rad);
   std::printf("collisions %d (upper body %d), non-finite plans %d\n", r.collisions, r.upper_body_collisions,
               r.non_finite);
-  if (command.json) {
-    std::string j = to_json(r);
-    j.pop_back();
-    std::printf("%s,%s}\n", j.c_str(), machine_json_fields().c_str());
-  }
+  if (command.json) print_json_line(to_json(r));
   return r.collisions == 0 && r.non_finite == 0 ? 0 : 1;
 }
 

@@ -15,6 +15,7 @@
 //
 // The upper body: whole-actor walks (terrain::TerrainWalker) through the low doorway, along the
 // shelf and on random scene paths; each walker step's upper-body stage is timed alone.
+#include "bench_json.hpp"
 #include "terrain/upper_body_planner.hpp"
 
 #include <array>
@@ -63,8 +64,8 @@ struct TerrainBenchResult {
 /// Deterministic paths for a seed; the timings are wall-clock on the calling thread.
 TerrainBenchResult run_terrain_bench(const TerrainBenchOptions& options);
 
-/// One line: {"footstep_plan_us_p50":...,"success_rate":...,"collisions":0,...} (no newline).
-std::string to_json(const TerrainBenchResult& result);
+/// {"footstep_plan_us_p50":...,"success_rate":...,"collisions":0,...}: the figures, rounded.
+Json to_json(const TerrainBenchResult& result);
 
 struct TerrainBenchCommand {
   TerrainBenchOptions options;

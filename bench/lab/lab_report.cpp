@@ -1,5 +1,6 @@
 #include "lab/lab_report.hpp"
 
+#include "bench_json.hpp"
 #include "lab/svg_plot.hpp"
 #include "machine_info.hpp"
 
@@ -33,32 +34,9 @@ std::string pad(const std::string& s, size_t width, bool right = true) {
   return right ? std::string(width - s.size(), ' ') + s : s + std::string(width - s.size(), ' ');
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-std::string json_number(double v, int decimals = 4) {
-  if (!std::isfinite(v)) return "null";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
+/// "[a,b,c]" for the text tables: each element as `f` writes it.
 template <typename T, typename F>
-std::string json_array(const std::vector<T>& v, F&& f) {
+std::string bracketed(const std::vector<T>& v, F&& f) {
   std::string out = "[";
   for (size_t i = 0; i < v.size(); ++i) out += (i ? "," : "") + f(v[i]);
   return out + "]";
@@ -302,14 +280,15 @@ std::string navigation_text(const NavigationResult& n) {
     const std::vector<double> blocks = p95_per_block(n, kResponsiveController, kBlockRuns);
     if (blocks.size() > 1)
       out += std::string("  ") + kResponsiveController + ", p95 per " + std::to_string(kBlockRuns) +
-             " seeds: " + json_array(blocks, [](double v) { return fmt("%.0f", v); }) + " ms\n";
+             " seeds: " + bracketed(blocks, [](double v) { return fmt("%.0f", v); }) + " ms\n";
   }
   out += "Collisions over every collision-checking controller (look-ahead 0-4, with steering, greedy): " +
          std::to_string(n.lookahead_collisions) + (n.lookahead_collisions == 0 ? " (as required)\n" : " (MUST BE 0)\n");
   if (n.naive_stuck.empty())
     out += "The naive FSM reached the goal every time.\n";
   else
-    out += std::string(replay ? "Naive FSM stuck in recordings: " : "Naive FSM stuck in runs: ") + json_array(n.naive_stuck, [](const std::string& s) { return s; }) +
+    out += std::string(replay ? "Naive FSM stuck in recordings: " : "Naive FSM stuck in runs: ") +
+           bracketed(n.naive_stuck, [](const std::string& s) { return s; }) +
            "; look-ahead (0-4, with steering) reached the goal in all of them: " +
            (n.lookahead_reached_where_naive_stuck ? "yes" : "NO") + "\n";
   return out;
@@ -349,105 +328,104 @@ CsvTable responses_csv(const std::vector<const NavigationResult*>& results) {
 // ---- JSON and files -------------------------------------------------------------------------
 
 std::string lab_json(const LabResult& r) {
-  auto sizes = [](const TreeSizeTable& t) {
-    std::string out = "{";
-    for (int s = 0; s < kNumStrategies; ++s)
-      out += (s ? "," : "") + json_string(std::string(strategy_name(static_cast<Strategy>(s)))) + ":" +
-             json_array(t.avg_tree_size[static_cast<size_t>(s)], [](double v) { return json_number(v, 2); });
-    return out + "}";
+  using bench::Json;
+  using bench::rounded;
+  auto numbers = [](const std::vector<double>& v, int decimals) {
+    Json out = Json::array();
+    for (double x : v) out.push_back(rounded(x, decimals));
+    return out;
   };
-  auto budgets = [](const TreeSizeTable& t) {
-    return json_array(t.budgets, [](int64_t v) { return std::to_string(v); });
+  auto sizes = [&](const TreeSizeTable& t) {
+    Json out = Json::object();
+    for (int s = 0; s < kNumStrategies; ++s)
+      out[std::string(strategy_name(static_cast<Strategy>(s)))] = numbers(t.avg_tree_size[static_cast<size_t>(s)], 2);
+    return out;
   };
   const Fig9Result& f = r.fig9;
   const NavigationResult& n = r.navigation;
-  std::string j = "{\"lab\":\"fig9-fig10-navigation\",\"scene\":" + json_string(r.scene);
-  j += ",\"quick\":" + std::string(r.options.quick ? "true" : "false");
-  j += ",\"frame_cost_s\":" + json_number(f.paper.model.frame_cost_s, 6);
-  j += ",\"paper_expansions_per_s\":" + json_number(f.paper.model.expansions_per_s, 0);
-  j += ",\"today_expansions_per_s\":" + json_number(f.rate.expansions_per_s, 0);
-  j += ",\"intervals_s\":" + json_array(f.paper.intervals_s, [](double v) { return json_number(v, 6); });
-  j += ",\"expansions_per_frame\":" + budgets(f.paper);
-  j += ",\"avg_tree_size\":" + sizes(f.paper);
-  j += ",\"expansions_per_frame_today\":" + budgets(f.today);
-  j += ",\"avg_tree_size_today\":" + sizes(f.today);
-  j += ",\"fig9_shape\":" + json_array(f.shape, [](const ShapeCheck& c) {
-         return "{\"claim\":" + json_string(c.claim) + ",\"holds\":" + (c.holds ? "true" : "false") +
-                ",\"detail\":" + json_string(c.detail) + "}";
-       });
-  j += ",\"turnover_interval_s\":" + json_number(f.turnover_interval_s, 6);
-  j += ",\"kept_share\":{";
+  Json j = {{"lab", "fig9-fig10-navigation"},
+            {"scene", r.scene},
+            {"quick", r.options.quick},
+            {"frame_cost_s", rounded(f.paper.model.frame_cost_s, 6)},
+            {"paper_expansions_per_s", rounded(f.paper.model.expansions_per_s, 0)},
+            {"today_expansions_per_s", rounded(f.rate.expansions_per_s, 0)},
+            {"intervals_s", numbers(f.paper.intervals_s, 6)},
+            {"expansions_per_frame", f.paper.budgets},
+            {"avg_tree_size", sizes(f.paper)},
+            {"expansions_per_frame_today", f.today.budgets},
+            {"avg_tree_size_today", sizes(f.today)}};
+  Json& shape = j["fig9_shape"] = Json::array();
+  for (const ShapeCheck& c : f.shape) shape.push_back({{"claim", c.claim}, {"holds", c.holds}, {"detail", c.detail}});
+  j["turnover_interval_s"] = rounded(f.turnover_interval_s, 6);
+  Json& kept = j["kept_share"] = Json::object();
   for (int s = 0; s < kNumStrategies; ++s)
-    j += (s ? "," : "") + json_string(std::string(strategy_name(static_cast<Strategy>(s)))) + ":" +
-         json_number(f.turnover[static_cast<size_t>(s)].mean_kept_share, 3);
-  j += "}";
-  j += ",\"fig10\":{\"time_s\":" + json_number(r.fig10.time_s, 3) + ",\"tree_size\":{";
-  for (size_t k = 0; k < r.fig10.panels.size(); ++k)
-    j += (k ? "," : "") + json_string(std::string(strategy_name(r.fig10.panels[k].strategy))) + ":" +
-         std::to_string(r.fig10.panels[k].end_positions_m.size());
-  j += "}}";
-  j += ",\"navigation_interval_s\":" + json_number(n.interval_s, 6);
-  j += ",\"navigation_expansions_per_frame\":" + std::to_string(n.expansions_per_frame);
-  j += ",\"collisions\":" + std::to_string(n.lookahead_collisions);
-  j += ",\"naive_stuck\":" + json_array(n.naive_stuck, json_string);
-  j += ",\"lookahead_reached_where_naive_stuck\":" +
-       std::string(n.lookahead_reached_where_naive_stuck ? "true" : "false");
+    kept[std::string(strategy_name(static_cast<Strategy>(s)))] =
+        rounded(f.turnover[static_cast<size_t>(s)].mean_kept_share, 3);
+  Json fig10_sizes = Json::object();
+  for (const Fig10Panel& p : r.fig10.panels)
+    fig10_sizes[std::string(strategy_name(p.strategy))] = p.end_positions_m.size();
+  j["fig10"] = {{"time_s", rounded(r.fig10.time_s, 3)}, {"tree_size", fig10_sizes}};
+  j["navigation_interval_s"] = rounded(n.interval_s, 6);
+  j["navigation_expansions_per_frame"] = n.expansions_per_frame;
+  j["collisions"] = n.lookahead_collisions;
+  j["naive_stuck"] = n.naive_stuck;
+  j["lookahead_reached_where_naive_stuck"] = n.lookahead_reached_where_naive_stuck;
   auto controllers = [](const NavigationResult& nav) {
-    return json_array(nav.summary, [](const ControllerSummary& s) {
-      return "{\"name\":" + json_string(s.controller) + ",\"goals_reached\":" +
-             std::to_string(s.goals_reached) + ",\"recordings\":" + std::to_string(s.recordings) +
-             ",\"fallbacks\":" + std::to_string(s.fallbacks) + ",\"stalls\":" + std::to_string(s.stalls) +
-             ",\"recoveries\":" + std::to_string(s.recoveries) +
-             ",\"colliding_frames\":" +
-             std::to_string(s.colliding_frames) + ",\"response_ms_p50\":" +
-             json_number(s.response_ms_p50, 1) + ",\"response_ms_p95\":" +
-             json_number(s.response_ms_p95, 1) + "}";
-    });
+    Json out = Json::array();
+    for (const ControllerSummary& s : nav.summary)
+      out.push_back({{"name", s.controller},
+                     {"goals_reached", s.goals_reached},
+                     {"recordings", s.recordings},
+                     {"fallbacks", s.fallbacks},
+                     {"stalls", s.stalls},
+                     {"recoveries", s.recoveries},
+                     {"colliding_frames", s.colliding_frames},
+                     {"response_ms_p50", rounded(s.response_ms_p50, 1)},
+                     {"response_ms_p95", rounded(s.response_ms_p95, 1)}});
+    return out;
   };
-  j += ",\"controllers\":" + controllers(n);
+  j["controllers"] = controllers(n);
   const NavigationResult& c = r.closed_loop;
-  j += ",\"closed_loop\":{\"collisions\":" + std::to_string(c.lookahead_collisions) +
-       ",\"naive_stuck\":" + json_array(c.naive_stuck, json_string) +
-       ",\"lookahead_reached_where_naive_stuck\":" +
-       (c.lookahead_reached_where_naive_stuck ? "true" : "false") +
-       ",\"controllers\":" + controllers(c) + ",\"response_ms_p95_per_20_seeds\":" +
-       json_array(p95_per_block(c, kResponsiveController, kBlockRuns), [](double v) { return json_number(v, 1); }) + "}";
+  j["closed_loop"] = {{"collisions", c.lookahead_collisions},
+                      {"naive_stuck", c.naive_stuck},
+                      {"lookahead_reached_where_naive_stuck", c.lookahead_reached_where_naive_stuck},
+                      {"controllers", controllers(c)},
+                      {"response_ms_p95_per_20_seeds",
+                       numbers(p95_per_block(c, kResponsiveController, kBlockRuns), 1)}};
   // At top level, for quick reading: the responsiveness bar's figure, from the project's
   // responsive controller closed loop (the replays are commands recorded for another avatar),
   // and the paper's controller (look-ahead, command matching re-sorted) on the replays.
   for (const ControllerSummary& s : c.summary)
     if (s.controller == kResponsiveController) {
-      j += ",\"response_controller\":" + json_string(s.controller + ", closed loop");
-      j += ",\"response_ms_p50\":" + json_number(s.response_ms_p50, 1);
-      j += ",\"response_ms_p95\":" + json_number(s.response_ms_p95, 1);
-      j += ",\"response_goals_reached\":" + std::to_string(s.goals_reached);
-      j += ",\"response_runs\":" + std::to_string(s.recordings);
+      j["response_controller"] = s.controller + ", closed loop";
+      j["response_ms_p50"] = rounded(s.response_ms_p50, 1);
+      j["response_ms_p95"] = rounded(s.response_ms_p95, 1);
+      j["response_goals_reached"] = s.goals_reached;
+      j["response_runs"] = s.recordings;
     }
   if (r.builtin_closed_loop)
     for (const ControllerSummary& s : r.builtin_closed_loop->summary)
       if (s.controller == kResponsiveController) {
-        j += ",\"builtin_response_ms_p50\":" + json_number(s.response_ms_p50, 1);
-        j += ",\"builtin_response_ms_p95\":" + json_number(s.response_ms_p95, 1);
-        j += ",\"builtin_response_goals_reached\":" + std::to_string(s.goals_reached);
+        j["builtin_response_ms_p50"] = rounded(s.response_ms_p50, 1);
+        j["builtin_response_ms_p95"] = rounded(s.response_ms_p95, 1);
+        j["builtin_response_goals_reached"] = s.goals_reached;
       }
   for (const ControllerSummary& s : n.summary)
     if (s.controller == "look-ahead 1 command") {
-      j += ",\"paper_response_ms_p50\":" + json_number(s.response_ms_p50, 1);
-      j += ",\"paper_response_ms_p95\":" + json_number(s.response_ms_p95, 1);
+      j["paper_response_ms_p50"] = rounded(s.response_ms_p50, 1);
+      j["paper_response_ms_p95"] = rounded(s.response_ms_p95, 1);
     }
   if (!r.motion_quality.empty()) {
-    nlohmann::json quality;
+    Json& quality = j["motion_quality"] = Json::array();
     for (const MotionQualityResult& q : r.motion_quality) {
-      nlohmann::json row = motion_quality_json(q);
+      nlohmann::json row = motion_quality_json(q);  // keys in alphabetical order
       row["name"] = q.controller;
-      quality.push_back(row);
+      quality.push_back(Json(row));
     }
-    j += ",\"motion_quality\":" + quality.dump();
   }
-  j += ",\"recordings_match_library\":" + std::string(r.recordings_match_library ? "true" : "false");
-  j += ",\"wall_s\":" + json_number(r.wall_s, 2);
-  j += "," + bench::machine_json_fields() + "}";
-  return j;
+  j["recordings_match_library"] = r.recordings_match_library;
+  j["wall_s"] = rounded(r.wall_s, 2);
+  return bench::json_line(std::move(j));
 }
 
 bool lab_write_files(const LabResult& r, const Scene& scene, const std::filesystem::path& dir,

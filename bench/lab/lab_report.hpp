@@ -25,7 +25,7 @@ CsvTable navigation_csv(const std::vector<const NavigationResult*>& results);
 /// One row per followed command change of every run: when, how long, which segments.
 CsvTable responses_csv(const std::vector<const NavigationResult*>& results);
 
-/// Every figure as one JSON object on one line (no trailing newline).
+/// Every figure, then where it ran (bench::json_line), as one JSON object on one line (no trailing newline).
 std::string lab_json(const LabResult& result);
 
 /// Writes fig9.csv, fig9.svg, fig10.csv, fig10.svg, navigation.csv and responses.csv into `dir` (created).

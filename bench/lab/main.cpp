@@ -2,10 +2,10 @@
 // shipped recordings (docs/LAB.md).
 //   foresight-lab --scene maze --out DIR [--json] [--quick] [--seeds 20] [--responsive-seeds 200]
 //                 [--motions DIR]   (a captured library instead of the built-in one)
+#include "bench_json.hpp"
 #include "lab/lab_experiments.hpp"
 #include "lab/lab_report.hpp"
 #include "library/motion_source_cli.hpp"
-#include "machine_info.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "foresight-lab: %s\n", error.c_str());
     return 1;
   }
-  std::printf("machine: %s\n", foresight::bench::machine_description().c_str());
+  foresight::bench::print_machine_line();
   std::printf("scene %s: train '%s' (%.1f s), eval '%s' (%.1f s), library %s %016llx (%s)\n\n",
               lab.name.c_str(), lab.train.name.c_str(), lab.train.duration_s(),
               lab.eval.name.c_str(), lab.eval.duration_s(), lab.library.name.c_str(),

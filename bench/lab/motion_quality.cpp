@@ -1,5 +1,6 @@
 #include "lab/motion_quality.hpp"
 
+#include "bench_json.hpp"
 #include "anim/canonical_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "lab/lab_experiments.hpp"
@@ -211,12 +212,18 @@ std::string motion_quality_text(const std::vector<MotionQualityResult>& results)
 }
 
 nlohmann::json motion_quality_json(const MotionQualityResult& r) {
-  return {{"foot_skate_cm_per_s_p50", r.foot_skate_cm_per_s_p50}, {"foot_skate_cm_per_s_p95", r.foot_skate_cm_per_s_p95},
-          {"foot_skate_cm_per_s_max", r.foot_skate_cm_per_s_max}, {"ground_error_cm_p95", r.ground_error_cm_p95},
-          {"ground_error_cm_max", r.ground_error_cm_max},         {"pops_per_min", r.pops_per_min},
-          {"limit_violations", r.limit_violations},               {"response_ms_p50", r.response_ms_p50},
-          {"response_ms_p95", r.response_ms_p95},                 {"collisions", r.collisions},
-          {"goals_reached_share", r.goals_reached_share}};
+  using bench::rounded;
+  return {{"foot_skate_cm_per_s_p50", rounded(r.foot_skate_cm_per_s_p50, 4)},
+          {"foot_skate_cm_per_s_p95", rounded(r.foot_skate_cm_per_s_p95, 4)},
+          {"foot_skate_cm_per_s_max", rounded(r.foot_skate_cm_per_s_max, 4)},
+          {"ground_error_cm_p95", rounded(r.ground_error_cm_p95, 4)},
+          {"ground_error_cm_max", rounded(r.ground_error_cm_max, 4)},
+          {"pops_per_min", rounded(r.pops_per_min, 3)},
+          {"limit_violations", r.limit_violations},
+          {"response_ms_p50", rounded(r.response_ms_p50, 1)},
+          {"response_ms_p95", rounded(r.response_ms_p95, 1)},
+          {"collisions", r.collisions},
+          {"goals_reached_share", rounded(r.goals_reached_share, 4)}};
 }
 
 }  // namespace foresight::lab

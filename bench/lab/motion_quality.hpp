@@ -82,7 +82,8 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
 
 /// The results as a table, one controller a row (the bench and the lab print it).
 std::string motion_quality_text(const std::vector<MotionQualityResult>& results);
-/// One result's figures under the JSON keys issue 18 names (plus ground_error_cm_max).
+/// One result's figures under the JSON keys issue 18 names (plus ground_error_cm_max), rounded
+/// (bench::rounded); nlohmann::json, so the keys print in alphabetical order.
 nlohmann::json motion_quality_json(const MotionQualityResult& r);
 
 }  // namespace foresight::lab
