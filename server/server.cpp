@@ -573,7 +573,7 @@ void Server::admit(const PendingJoin& join, Clock::time_point now) {
 
 void Server::on_input(Player& p, const wire::Input& m) {
   // The client holds that snapshot whole: later ones may code its avatars against it.
-  p.sent_views.acknowledge(m.ack_snapshot());
+  p.sent_views.acknowledge(snapshot_archive_, m.ack_snapshot());
   p.echo_client_time_ms = m.client_time_ms();
   const auto* commands = m.commands();
   if (commands == nullptr || commands->size() == 0) return;

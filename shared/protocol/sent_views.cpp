@@ -45,58 +45,82 @@ void SentViews::record(uint32_t snapshot, size_t archived, std::span<const uint3
   }
 }
 
-void SentViews::acknowledge(uint32_t snapshot) {
+namespace {
+
+bool in_bits(const std::vector<uint64_t>& bits, size_t bit) {
+  return bit / 64 < bits.size() && (bits[bit / 64] >> (bit % 64) & 1) != 0;
+}
+
+}  // namespace
+
+void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
   Slot& s = slots_[snapshot % SnapshotArchive::kSlots];
-  if (s.valid && s.snapshot == snapshot) s.acknowledged = true;
+  const SnapshotArchive::Slot* a = archive.find(snapshot);
+  if (!s.valid || s.snapshot != snapshot || s.acknowledged || a == nullptr) return;
+  s.acknowledged = true;
+  // Merge the snapshot's view (its archived avatars whose bit is set, in id order) into newest_
+  // (by id), keeping per id the newer snapshot (acknowledgements may come out of order) and
+  // dropping what is out of reach.
+  const auto newer = [](uint32_t x, uint32_t y) { return static_cast<int32_t>(x - y) > 0; };
+  const auto in_reach = [&](const Newest& n) {
+    return snapshot - n.snapshot <= kMaxReferenceBack || newer(n.snapshot, snapshot);
+  };
+  merged_.clear();
+  size_t k = 0;
+  for (size_t i = 0; i < a->avatars.size(); ++i) {
+    if (!in_bits(s.bits, 2 * i)) continue;
+    const uint32_t id = a->avatars[i].id();
+    for (; k < newest_.size() && newest_[k].id < id; ++k)
+      if (in_reach(newest_[k])) merged_.push_back(newest_[k]);
+    Newest n{id, snapshot};
+    if (k < newest_.size() && newest_[k].id == id) {
+      if (newer(newest_[k].snapshot, snapshot)) n = newest_[k];
+      ++k;
+    }
+    merged_.push_back(n);
+  }
+  for (; k < newest_.size(); ++k)
+    if (in_reach(newest_[k])) merged_.push_back(newest_[k]);
+  newest_.swap(merged_);
 }
 
 void SentViews::references(const SnapshotArchive& archive, std::span<const wire::AvatarState> view,
                            uint32_t snapshot, std::vector<AvatarReference>& out) const {
   out.assign(view.size(), AvatarReference{});
-  // The acknowledged snapshots in reach, newest first, each with a cursor into its archived
-  // avatars (view ids increase, so each cursor only moves forward).
-  struct Candidate {
-    const Slot* view;
-    const SnapshotArchive::Slot* archived;
-    size_t cursor;
-  };
-  std::array<Candidate, SnapshotArchive::kSlots> candidates;
-  size_t count = 0;
-  for (uint32_t back = 1; back <= kMaxReferenceBack; ++back) {
-    const uint32_t n = snapshot - back;
-    const Slot& s = slots_[n % SnapshotArchive::kSlots];
-    const SnapshotArchive::Slot* a = archive.find(n);
-    if (s.valid && s.acknowledged && s.snapshot == n && a != nullptr) candidates[count++] = {&s, a, 0};
-  }
+  // Both lists are sorted by id: one walk finds each avatar's newest acknowledged snapshot.
+  size_t k = 0;
   for (size_t i = 0; i < view.size(); ++i) {
     const uint32_t id = view[i].id();
-    for (size_t c = 0; c < count; ++c) {
-      Candidate& cand = candidates[c];
-      const auto& avatars = cand.archived->avatars;
-      const auto it = std::lower_bound(avatars.begin() + static_cast<std::ptrdiff_t>(cand.cursor), avatars.end(), id,
-                                       [](const wire::AvatarState& a, uint32_t v) { return a.id() < v; });
-      cand.cursor = static_cast<size_t>(it - avatars.begin());
-      if (it == avatars.end() || it->id() != id) continue;
-      const size_t bit = 2 * cand.cursor;
-      if (bit / 64 >= cand.view->bits.size() || (cand.view->bits[bit / 64] >> (bit % 64) & 1) == 0) continue;
-      const bool far = (cand.view->bits[(bit + 1) / 64] >> ((bit + 1) % 64) & 1) != 0;
-      AvatarReference& r = out[i];
-      r.found = true;
-      r.snapshot = cand.archived->snapshot;
-      r.server_tick = cand.archived->server_tick;
-      r.state = *it;
-      r.state.mutate_flags(static_cast<uint8_t>(it->flags() | (id == owner_ ? kAvatarYours : 0) | (far ? kAvatarFar : 0)));
-      break;
-    }
+    while (k < newest_.size() && newest_[k].id < id) ++k;
+    if (k == newest_.size()) break;
+    if (newest_[k].id != id) continue;
+    const uint32_t n = newest_[k].snapshot, back = snapshot - n;
+    const Slot& s = slots_[n % SnapshotArchive::kSlots];
+    const SnapshotArchive::Slot* a = archive.find(n);
+    if (back == 0 || back > kMaxReferenceBack || !s.valid || !s.acknowledged || s.snapshot != n || a == nullptr)
+      continue;
+    const auto it = std::lower_bound(a->avatars.begin(), a->avatars.end(), id,
+                                     [](const wire::AvatarState& x, uint32_t v) { return x.id() < v; });
+    if (it == a->avatars.end() || it->id() != id) continue;
+    const size_t bit = 2 * static_cast<size_t>(it - a->avatars.begin());
+    if (!in_bits(s.bits, bit)) continue;
+    AvatarReference& r = out[i];
+    r.found = true;
+    r.snapshot = n;
+    r.server_tick = a->server_tick;
+    r.state = *it;
+    r.state.mutate_flags(static_cast<uint8_t>(it->flags() | (id == owner_ ? kAvatarYours : 0) |
+                                              (in_bits(s.bits, bit + 1) ? kAvatarFar : 0)));
   }
 }
 
 void SentViews::clear() {
   for (Slot& s : slots_) s.valid = s.acknowledged = false;
+  newest_.clear();
 }
 
 size_t SentViews::bytes() const {
-  size_t n = sizeof(*this);
+  size_t n = sizeof(*this) + (newest_.capacity() + merged_.capacity()) * sizeof(Newest);
   for (const Slot& s : slots_) n += s.bits.capacity() * sizeof(uint64_t);
   return n;
 }

@@ -52,8 +52,9 @@ class SentViews {
   /// `snapshot`, `archived` avatars long), `far[k]` non-zero for those sent with kAvatarFar
   /// (empty: none).
   void record(uint32_t snapshot, size_t archived, std::span<const uint32_t> indices, std::span<const uint8_t> far);
-  /// The receiver holds `snapshot` whole: later views may be coded against it.
-  void acknowledge(uint32_t snapshot);
+  /// The receiver holds `snapshot` whole (archived in `archive`): later views may be coded
+  /// against it. Notes, per avatar, the newest acknowledged snapshot holding it.
+  void acknowledge(const SnapshotArchive& archive, uint32_t snapshot);
   /// For each avatar of `view` (sorted by id), the newest acknowledged state the receiver holds of
   /// it, at most kMaxReferenceBack snapshots before `snapshot`, as it was sent (flags included).
   void references(const SnapshotArchive& archive, std::span<const wire::AvatarState> view, uint32_t snapshot,
@@ -70,6 +71,14 @@ class SentViews {
   };
   std::array<Slot, SnapshotArchive::kSlots> slots_;
   uint32_t owner_ = 0;
+  /// By id: the newest acknowledged snapshot that held the avatar (entries out of reach are
+  /// dropped as acknowledgements come). Kept so a reference costs one lookup per avatar, not a
+  /// search through 63 snapshots for the far ones that come every few.
+  struct Newest {
+    uint32_t id = 0;
+    uint32_t snapshot = 0;
+  };
+  std::vector<Newest> newest_, merged_;
 };
 
 /// A sender with one receiver whose views are whole snapshots, flags included (tests, tools, the
@@ -78,7 +87,7 @@ class WholeViewSender {
  public:
   /// The view sent as `snapshot` (sorted by id).
   void remember(uint32_t snapshot, uint32_t server_tick, std::span<const wire::AvatarState> view);
-  void acknowledge(uint32_t snapshot) { views_.acknowledge(snapshot); }
+  void acknowledge(uint32_t snapshot) { views_.acknowledge(archive_, snapshot); }
   /// encoder.plan() of `view` against what was acknowledged.
   void plan(AvatarDeltaEncoder& encoder, std::span<const wire::AvatarState> view, uint32_t snapshot,
             uint32_t server_tick);

@@ -151,9 +151,9 @@ TEST(AvatarDelta, AcknowledgementsOutOfOrderStillReferToTheNewest) {
   views.record(3, 2, both, {});
   archive.start(4, 4).avatars = {State(1, 0, 0, 1, 1, 1, 2, 0, 0), State(2, 0, 0, 1, 1, 1, 2, 0, 0)};
   views.record(4, 2, first, {});  // avatar 2 was not in this receiver's view of 4
-  views.acknowledge(4);
-  views.acknowledge(3);  // late
-  views.acknowledge(3);  // and repeated
+  views.acknowledge(archive, 4);
+  views.acknowledge(archive, 3);  // late
+  views.acknowledge(archive, 3);  // and repeated
   const std::vector<State> now{State(1, 0, 0, 1, 1, 1, 3, 0, 0), State(2, 0, 0, 1, 1, 1, 3, 0, 0)};
   std::vector<AvatarReference> refs;
   views.references(archive, now, 5, refs);
@@ -178,7 +178,7 @@ TEST(AvatarDelta, ReferencesCarryTheFlagsTheReceiverWasSent) {
   const std::vector<uint32_t> indices{0, 1, 2};
   const std::vector<uint8_t> far{1, 0, 0};
   views.record(7, 3, indices, far);
-  views.acknowledge(7);
+  views.acknowledge(archive, 7);
   std::vector<AvatarReference> refs;
   views.references(archive, archive.find(7)->avatars, 8, refs);
   ASSERT_TRUE(refs[0].found && refs[1].found && refs[2].found);
