@@ -212,7 +212,7 @@ class MotionTree {
     return a.priority != b.priority ? a.priority < b.priority : a.order > b.order;
   }
 
-  static constexpr int kInitialNodes = 256;
+  static constexpr int kInitialNodes = 64;
   static constexpr int kShrinkCheckEvents = 8;  ///< Re-roots and resets between shrink checks.
   void reserve_nodes(int n);
   bool shrink_due();
