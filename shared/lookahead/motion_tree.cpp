@@ -24,7 +24,7 @@ MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
   // Nothing survives a reset, so a pool that has been far too large for a while is simply
   // replaced (no nodes to move).
-  if (shrink_due()) {
+  if (shrink_due(/*reroot=*/false)) {
     const auto capacity = static_cast<size_t>(shrunk_capacity());
     adopt_storage(std::vector<MotionTreeNode>(capacity), std::vector<uint32_t>(capacity));
   }
@@ -57,16 +57,19 @@ void MotionTree::reserve_nodes(int n) {
 }
 
 // Memory follows the work both ways: the pool doubles as the budget pays for nodes, and once the
-// tree has stayed at half of it or less for kShrinkCheckEvents re-roots and resets (a few seconds
-// of play) it is cut to the power of two above that peak and an eighth. Without this, every avatar kept the largest tree it ever
+// tree has stayed at half of it or less (at every re-root and reset) for kShrinkCheckReroots
+// re-roots (several seconds of play) it is cut to the power of two above that peak and an eighth.
+// Counting re-roots, not resets: steering resets a tree every steered frame, and a window of
+// frames let pools shrink and grow back several times a second (copies and allocator churn). Without this, every avatar kept the largest tree it ever
 // had: players joining an empty server get the whole budget and fill 8192 nodes in their first
 // second, and kept 590 KB each after the server filled up and their trees held 400.
-bool MotionTree::shrink_due() {
+bool MotionTree::shrink_due(bool reroot) {
   peak_nodes_ = std::max(peak_nodes_, num_nodes_);
-  if (++events_since_check_ < kShrinkCheckEvents) return false;
+  if (reroot) ++reroots_since_check_;
+  if (reroots_since_check_ < kShrinkCheckReroots) return false;
   const bool due = config_.shrink_pool && node_capacity() > kInitialNodes && 2 * peak_nodes_ <= node_capacity();
   if (!due) {  // the next window starts now (a due shrink starts it in adopt_storage)
-    events_since_check_ = 0;
+    reroots_since_check_ = 0;
     peak_nodes_ = num_nodes_;
   }
   return due;
@@ -86,7 +89,7 @@ void MotionTree::adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<ui
   std::vector<QueueEntry>().swap(queue_);
   std::vector<int>().swap(visit_stack_);
   queue_.reserve(capacity);
-  events_since_check_ = 0;
+  reroots_since_check_ = 0;
   peak_nodes_ = 0;
 }
 
@@ -416,7 +419,7 @@ int MotionTree::advance_root(int child) {
   priorities_stale_ = true;
   sums_valid_ = false;
   const int transition = r.transition;
-  if (shrink_due()) compact(shrunk_capacity());
+  if (shrink_due(/*reroot=*/true)) compact(shrunk_capacity());
   return transition;
 }
 

@@ -213,9 +213,9 @@ class MotionTree {
   }
 
   static constexpr int kInitialNodes = 64;
-  static constexpr int kShrinkCheckEvents = 8;  ///< Re-roots and resets between shrink checks.
+  static constexpr int kShrinkCheckReroots = 8;  ///< Re-roots between shrink checks.
   void reserve_nodes(int n);
-  bool shrink_due();
+  bool shrink_due(bool reroot);
   int shrunk_capacity() const;
   void adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<uint32_t> order);
   void compact(int capacity);
@@ -249,7 +249,7 @@ class MotionTree {
   int first_unused_ = 0;  ///< Nodes from here on were never allocated since reset().
   int num_nodes_ = 0;
   int peak_nodes_ = 0;          ///< Most nodes seen at a re-root or reset since the last shrink check.
-  int events_since_check_ = 0;  ///< Re-roots and resets since then.
+  int reroots_since_check_ = 0;  ///< Re-roots since then.
   /// Per child of the root: its branch sum, kept up to date as nodes are added. Valid while
   /// sums_valid_ (advance_root changes every depth: the next refresh_priorities sums again).
   struct RootChildSum {

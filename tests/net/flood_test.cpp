@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <fstream>
 #include <memory>
 
@@ -37,7 +39,9 @@ TEST(Flood, TenThousandBogusConnectsASecondLeaveTheServerPlayable) {
   const std::vector<uint8_t> forged(response.begin(), response.end());
   const std::vector<uint8_t> garbage(300, 0x5A);
 
-  m.play(fleet, 30);  // the bots connect first... and more join during the flood below
+  // The bots connect first and play 5 s, so their trees' node pools (which grow with the work:
+  // motion_tree.hpp) have reached their working size before memory is measured.
+  m.play(fleet, 150);
   const long rss_before = rss_kib();
   const uint64_t sent_before = m.server.counters().challenges_sent;
   // 10 s of flood: 333 connects, 30 forged responses and 30 garbage datagrams per 33 ms tick.
@@ -61,7 +65,14 @@ TEST(Flood, TenThousandBogusConnectsASecondLeaveTheServerPlayable) {
   EXPECT_GE(c.drops.by_reason[static_cast<size_t>(protocol::DropReason::kBadIdentifier)], 30u * 300u);
   EXPECT_EQ(c.sessions_opened, 3u);
   // Stateless: the flood leaves no per-address state behind; allow a little for allocator noise.
-  EXPECT_LT(rss_kib() - rss_before, 8 * 1024) << "memory grew by " << (rss_kib() - rss_before) << " KiB";
+  // Not under AddressSanitizer: freed memory waits in its quarantine (256 MB) before reuse, so
+  // there the resident set grows with every allocation the tick makes and frees (tree pools
+  // resizing, a compaction's scratch), not with state kept.
+  const long grew_kib = rss_kib() - rss_before;
+  std::printf("resident memory grew by %ld KiB during the flood\n", grew_kib);
+#if !defined(__SANITIZE_ADDRESS__)
+  EXPECT_LT(grew_kib, 8 * 1024);
+#endif
   fleet.disconnect_all();
 }
 
