@@ -20,10 +20,6 @@ const SnapshotArchive::Slot* SnapshotArchive::find(uint32_t snapshot) const {
   return s.valid && s.snapshot == snapshot ? &s : nullptr;
 }
 
-void SnapshotArchive::reserve(size_t avatars) {
-  for (Slot& s : slots_) s.avatars.reserve(avatars);
-}
-
 size_t SnapshotArchive::bytes() const {
   size_t n = sizeof(*this);
   for (const Slot& s : slots_) n += s.avatars.capacity() * sizeof(wire::AvatarState);
@@ -112,11 +108,6 @@ void SentViews::references(const SnapshotArchive& archive, std::span<const wire:
     r.state.mutate_flags(static_cast<uint8_t>(it->flags() | (id == owner_ ? kAvatarYours : 0) |
                                               (in_bits(s.bits, bit + 1) ? kAvatarFar : 0)));
   }
-}
-
-void SentViews::clear() {
-  for (Slot& s : slots_) s.valid = s.acknowledged = false;
-  newest_.clear();
 }
 
 size_t SentViews::bytes() const {

@@ -33,8 +33,6 @@ class SnapshotArchive {
   /// The slot of `snapshot`, emptied; it replaces the snapshot kSlots earlier.
   Slot& start(uint32_t snapshot, uint32_t server_tick);
   const Slot* find(uint32_t snapshot) const;
-  /// Room for this many avatars in every slot.
-  void reserve(size_t avatars);
   /// Bytes held (capacity), for the server's memory report.
   size_t bytes() const;
 
@@ -59,7 +57,6 @@ class SentViews {
   /// it, at most kMaxReferenceBack snapshots before `snapshot`, as it was sent (flags included).
   void references(const SnapshotArchive& archive, std::span<const wire::AvatarState> view, uint32_t snapshot,
                   std::vector<AvatarReference>& out) const;
-  void clear();
   size_t bytes() const;
 
  private:
