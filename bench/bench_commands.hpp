@@ -1,7 +1,7 @@
 #pragma once
 // Subcommands of foresight-bench. Each prints the machine it ran on, its figures, and with `json`
 // one JSON object as its last line. Returns the process exit code.
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 
 #include <string>
 #include <vector>

@@ -13,7 +13,7 @@
 
 #include "bench_commands.hpp"
 #include "bench_json.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "library/playback.hpp"
 #include "renderer.hpp"
 #include "snapshot_buffer.hpp"

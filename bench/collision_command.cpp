@@ -3,7 +3,7 @@
 #include "bench_commands.hpp"
 #include "bench_json.hpp"
 #include "collision_bench.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"

@@ -3,7 +3,7 @@
 // its frames and prioritised (MotionTree::grow's count).
 #include "bench_commands.hpp"
 #include "bench_json.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "lookahead/motion_tree.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"

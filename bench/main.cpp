@@ -9,7 +9,7 @@
 //   foresight-bench motion-quality [--scene maze] [--goal NAME] [--motions DIR] [--seeds 10] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
-#include "library/motion_source_cli.hpp"
+#include "library_build/motion_source_cli.hpp"
 #include "terrain_bench.hpp"
 
 #include <CLI/CLI.hpp>

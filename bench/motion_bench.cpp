@@ -1,8 +1,8 @@
 // bvh and graph: the offline half (loading and graph building), timed.
-#include "anim/bvh_import.hpp"
+#include "import/bvh_import.hpp"
 #include "bench_commands.hpp"
 #include "bench_json.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 
 #include <chrono>
 #include <cstdio>

@@ -5,7 +5,7 @@
 #include "bench_json.hpp"
 #include "lab/lab_experiments.hpp"
 #include "lab/motion_quality.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "world/data_paths.hpp"
 
 #include <nlohmann/json.hpp>

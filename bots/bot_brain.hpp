@@ -1,6 +1,6 @@
 #pragma once
 // One bot's script: what it holds on the keys each frame, from where its avatar is.
-//   goals   a ScriptedPlayer (lookahead/scripted_player.hpp: reaction delays, hesitation,
+//   goals   a ScriptedPlayer (scripted/scripted_player.hpp: reaction delays, hesitation,
 //           wrong taps, wiggles) steers from the avatar's position to a scene goal point picked at
 //           random; within the goal's radius it counts and picks another goal (with a single
 //           goal: a free point elsewhere first, uncounted, then the goal again).
@@ -16,8 +16,8 @@
 // allocation, rationed per frame over all bots by the caller's plan budget.
 #include "bot_config.hpp"
 #include "bot_world.hpp"
-#include "lookahead/control_input.hpp"
-#include "lookahead/scripted_player.hpp"
+#include "world/control_input.hpp"
+#include "scripted/scripted_player.hpp"
 
 #include <cstdint>
 #include <random>

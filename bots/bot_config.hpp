@@ -1,8 +1,8 @@
 #pragma once
 // What a run of bots does: how many, against which server, driven by which script, for how long.
 // Filled by foresight-bots' command line (main.cpp) or directly by in-process tests.
-#include "protocol/impairment.hpp"
-#include "protocol/udp_socket.hpp"
+#include "transport/impairment.hpp"
+#include "transport/udp_socket.hpp"
 
 #include <cstdint>
 #include <string>

@@ -14,7 +14,7 @@
 #include "bot_report.hpp"
 #include "bot_world.hpp"
 #include "collision_watch.hpp"
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 
 #include <atomic>
 #include <chrono>

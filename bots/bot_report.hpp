@@ -2,8 +2,8 @@
 // The outcome of a bot run: what the clients measured, what the collision watch saw, and the
 // server's own figures (a ServerStats requested at the end). Printed for people, and as one JSON
 // object for scripts (docs/BOTS.md describes every field).
-#include "protocol/client_connection.hpp"
-#include "protocol/histogram.hpp"
+#include "transport/client_connection.hpp"
+#include "transport/histogram.hpp"
 #include "protocol/packet.hpp"
 
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
 #include "bot_world.hpp"
 
-#include "lookahead/scripted_player.hpp"
+#include "scripted/scripted_player.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 

@@ -4,7 +4,7 @@
 // and for the replay script the scene's evaluation recording. Loaded once, on the first Accept.
 #include "bot_config.hpp"
 #include "library/motion_library.hpp"
-#include "lookahead/recording.hpp"
+#include "scripted/recording.hpp"
 #include "world/collision_world.hpp"
 #include "world/scene.hpp"
 

@@ -15,7 +15,7 @@
 // tolerance" of the issue.
 #include "foresight_generated.h"
 #include "library/pose_check.hpp"
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 #include "terrain/terrain_body.hpp"
 #include "world/scene.hpp"
 #include "world/collision_world.hpp"

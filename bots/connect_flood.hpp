@@ -3,7 +3,7 @@
 // "Connect floods"): bogus ConnectRequests at a steady rate from 64 sockets, never following up a
 // Challenge, plus one forged ConnectResponse (a made-up cookie) in ten, on a thread of its own, so
 // the server's tick time and memory can be measured in real time under a flood while bots play.
-#include "protocol/udp_socket.hpp"
+#include "transport/udp_socket.hpp"
 
 #include <atomic>
 #include <cstdint>

@@ -6,9 +6,9 @@
 // nothing stopped the run, 1 otherwise (nobody connected, the scene or recording missing, ...).
 #include "bot_fleet.hpp"
 #include "connect_flood.hpp"
-#include "library/library_source.hpp"
-#include "library/motion_source_cli.hpp"
-#include "protocol/impairment_cli.hpp"
+#include "library_build/library_source.hpp"
+#include "library_build/motion_source_cli.hpp"
+#include "transport/impairment_cli.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -16,10 +16,10 @@
 #include "fighter/morphology.hpp"
 #include "library/playback.hpp"
 #include "library/pose_stage.hpp"
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 #include "protocol/protocol.hpp"
 #include "world/data_paths.hpp"
-#include "protocol/scene_transfer.hpp"
+#include "transport/scene_transfer.hpp"
 #include "world/scene_load.hpp"
 
 #include <epoxy/gl.h>

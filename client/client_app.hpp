@@ -1,9 +1,9 @@
 #pragma once
 // The interactive client: a GLFW window, the connection to the server, the snapshot buffer, the
 // cameras and the renderer, driven one frame at a time (docs/CLIENT.md).
-#include "lookahead/recording.hpp"
-#include "protocol/impairment.hpp"
-#include "protocol/udp_socket.hpp"
+#include "scripted/recording.hpp"
+#include "transport/impairment.hpp"
+#include "transport/udp_socket.hpp"
 
 #include <atomic>
 #include <optional>

@@ -3,7 +3,7 @@
 // alternative), give a direction in camera space (x right, y forward); C crouches. Both go
 // through control_from_input, so keys and drag reach the server the same way. Pure so it can be
 // tested without a window.
-#include "lookahead/control_input.hpp"
+#include "world/control_input.hpp"
 
 namespace foresight::client {
 

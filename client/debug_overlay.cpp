@@ -1,6 +1,6 @@
 #include "debug_overlay.hpp"
 
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>

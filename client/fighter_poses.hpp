@@ -9,7 +9,7 @@
 // Pure (no GL) and fixed capacity: every slot is allocated in the constructor, push() and
 // sample() (into a vector whose capacity holds max_fighters) allocate nothing.
 #include "fighter/morphology.hpp"
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 
 #include <array>
 #include <cstdint>

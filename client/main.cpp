@@ -6,9 +6,9 @@
 // camera, T the feasible-motion-tree overlay, Escape quits.
 #include "client_app.hpp"
 
-#include "library/library_source.hpp"
-#include "library/motion_source_cli.hpp"
-#include "protocol/impairment_cli.hpp"
+#include "library_build/library_source.hpp"
+#include "library_build/motion_source_cli.hpp"
+#include "transport/impairment_cli.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -1,7 +1,7 @@
 #pragma once
 // --script: the player's input read from a recording (docs/RECORDINGS.md) instead of the
 // keyboard. Pure so it can be tested without a window.
-#include "lookahead/recording.hpp"
+#include "scripted/recording.hpp"
 
 namespace foresight::client {
 

@@ -10,7 +10,7 @@
 // newest snapshot (the interpolation delay), so the flash lands with the strike as drawn.
 //
 // Pure logic, fixed capacity (a ring of markers and of flashing targets), no allocation.
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 
 #include <array>
 #include <cstdint>

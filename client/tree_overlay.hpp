@@ -7,7 +7,7 @@
 
 #include "library/motion_library.hpp"
 #include "library/playback.hpp"
-#include "protocol/client_connection.hpp"
+#include "transport/client_connection.hpp"
 
 #include <vector>
 

@@ -1,9 +1,9 @@
-// libFuzzer: any text through the BVH reader (anim/bvh.hpp: the strict, bounded parser) and, when
+// libFuzzer: any text through the BVH reader (import/bvh.hpp: the strict, bounded parser) and, when
 // it parses, the validation and the writer that must accept what the parser produced, then the
 // import as a folder does it: root rule, dummy roots, humanoid roles, scale and retargeting onto
-// the canonical skeleton (anim/bvh_import.hpp), which must fail cleanly or give finite poses.
-#include "anim/bvh.hpp"
-#include "anim/bvh_import.hpp"
+// the canonical skeleton (import/bvh_import.hpp), which must fail cleanly or give finite poses.
+#include "import/bvh.hpp"
+#include "import/bvh_import.hpp"
 
 #include <cmath>
 #include <cstdlib>

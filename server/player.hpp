@@ -3,7 +3,7 @@
 // times out). Private to the server's translation units.
 #include "fighters/fighter_npc.hpp"
 #include "lookahead/lookahead_avatar.hpp"
-#include "protocol/udp_socket.hpp"
+#include "transport/udp_socket.hpp"
 #include "terrain/terrain_avatar.hpp"
 #include "server.hpp"
 

@@ -8,7 +8,7 @@
 #include "protocol/player_name.hpp"
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
-#include "protocol/scene_transfer.hpp"
+#include "transport/scene_transfer.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 

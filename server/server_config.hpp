@@ -1,7 +1,7 @@
 #pragma once
 // Every tunable of the server, with its default. The command line (main.cpp) sets them;
 // docs/SERVER.md explains each.
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "lookahead/strategy.hpp"
 
 #include <cstdint>

@@ -6,7 +6,7 @@
 #include "fighter/fighter_rig.hpp"
 #include "fighter/morphology.hpp"
 #include "lookahead/scene_path.hpp"
-#include "lookahead/scripted_player.hpp"
+#include "lookahead/scene_path.hpp"
 #include "player.hpp"
 #include "protocol/quantize.hpp"
 

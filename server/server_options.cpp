@@ -1,6 +1,6 @@
 #include "server_options.hpp"
 
-#include "library/motion_source_cli.hpp"
+#include "library_build/motion_source_cli.hpp"
 
 #include <cmath>
 #include <cstdlib>

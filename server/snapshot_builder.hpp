@@ -7,11 +7,11 @@
 // sendmmsg batch), so nothing is shared but the frame and the socket's descriptor.
 #include "interest.hpp"
 #include "protocol/avatar_delta.hpp"
-#include "protocol/datagram_batch.hpp"
+#include "transport/datagram_batch.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/sent_views.hpp"
-#include "protocol/session_crypto.hpp"
-#include "protocol/udp_socket.hpp"
+#include "transport/session_crypto.hpp"
+#include "transport/udp_socket.hpp"
 
 #include <cstdint>
 #include <span>

@@ -1,9 +1,9 @@
 #pragma once
-// Driving a recording frame by frame (lookahead/replay.hpp's ReplayRun, the same loop as
+// Driving a recording frame by frame (scripted/replay.hpp's ReplayRun, the same loop as
 // replay_recording) to look inside the avatar at chosen moments: its state for Fig. 10 and for
 // timing MotionTree::grow on realistic trees.
-#include "lookahead/recording.hpp"
-#include "lookahead/replay.hpp"
+#include "scripted/recording.hpp"
+#include "scripted/replay.hpp"
 
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 
 #include "lab/lab_driver.hpp"
 #include "lab/lab_internal.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 

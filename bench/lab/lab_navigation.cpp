@@ -2,7 +2,7 @@
 #include "lab/lab_experiments.hpp"
 
 #include "lab/lab_internal.hpp"
-#include "lookahead/recording_generator.hpp"
+#include "scripted/recording_generator.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include "bench_json.hpp"
 #include "lab/lab_experiments.hpp"
 #include "lab/lab_report.hpp"
-#include "library/motion_source_cli.hpp"
+#include "library_build/motion_source_cli.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -6,8 +6,8 @@
 #include "lab/lab_experiments.hpp"
 #include "library/foot_contact.hpp"
 #include "library/pose_check.hpp"
-#include "lookahead/replay.hpp"
-#include "lookahead/scripted_player.hpp"
+#include "scripted/replay.hpp"
+#include "scripted/scripted_player.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // The default cast the fighter's offline tools adapt strikes between (benchmarks, figures, tests):
 // the default library (its strikes and their skeleton), the default morphology's limb model (the
 // strikes' source) and the five fighter morphologies with theirs. Built in one go (allocates).
-#include "anim/author/default_library.hpp"
+#include "author/default_library.hpp"
 #include "fighter/morphology.hpp"
 #include "fighter/strike_adaptation.hpp"
 

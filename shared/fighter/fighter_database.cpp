@@ -1,7 +1,7 @@
 #include "fighter/fighter_database.hpp"
 
-#include "anim/author/default_library.hpp"
-#include "anim/bvh_import.hpp"
+#include "author/default_library.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
 

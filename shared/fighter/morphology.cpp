@@ -1,6 +1,6 @@
 #include "fighter/morphology.hpp"
 
-#include "anim/author/default_skeleton.hpp"
+#include "author/default_skeleton.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -25,7 +25,8 @@ struct SegmentMotion {
 };
 
 struct MotionLibrary {
-  // Source data (filled by a builder, then motion_library_compile()).
+  // Source data (filled by a builder, then compiled by motion_library_compile in
+  // library_build/library_compile.hpp).
   std::string name;
   Skeleton skeleton;
   std::vector<Clip> clips;
@@ -65,11 +66,6 @@ struct MotionLibrary {
   /// Index of a transition from -> to, or -1.
   int find_transition(int from, int to) const;
 };
-
-/// Checks the source data and computes the compiled data and the content hash.
-/// Returns false with a reason when clips and skeleton disagree, a segment's frame range is
-/// outside its clip, or a transition names a missing segment.
-bool motion_library_compile(MotionLibrary& library, std::string& error);
 
 /// The pose of `frame` (0-based, within [0, num_frames]) of `segment`, whose start is placed at
 /// `segment_start` in the world. `incoming_transition` (or -1) is the transition the segment was

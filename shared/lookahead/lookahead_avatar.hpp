@@ -13,7 +13,7 @@
 // ahead for its body, makes it back off (the tree follows an escape direction) and try again
 // (lookahead_avatar.cpp, docs/LOOKAHEAD.md "Recovering").
 #include "library/playback.hpp"
-#include "lookahead/control_input.hpp"
+#include "world/control_input.hpp"
 #include "lookahead/motion_tree.hpp"
 
 #include <cstdint>

@@ -1,7 +1,8 @@
 #pragma once
-// A coarse route planner for authoring (recording_generator.hpp): where a walker of a given
-// clearance and height can go, as a few straight legs. Not used by the avatar at run time (the
-// feasible motion tree does its own, exact, collision checks).
+// A coarse route planner: where a walker of a given clearance and height can go, as a few straight
+// legs. The scripted player plans with it, NPC fighters route around walls with it, and the avatar
+// controller probes a turn's way with scene_segment_clear; the feasible motion tree does its own,
+// exact, collision checks.
 //
 // Model: a point is free when a standing (or crouching) body there, a vertical cylinder of radius
 // clearance_m from the ground up to body_height_m above it, passes frame_collides() with the

@@ -2,7 +2,7 @@
 // The client's Input message: a held ControlInput quantised into an InputCommand (the server
 // decodes it with control_input_from_command), and the packet repeating the last few commands.
 // ControlInput is a header-only value type of lookahead/, the only thing this layer takes from it.
-#include "lookahead/control_input.hpp"
+#include "world/control_input.hpp"
 #include "protocol/packet.hpp"
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 #include "terrain/procedural_walk.hpp"
 
-#include "anim/author/default_skeleton.hpp"
-#include "anim/author/rig.hpp"
+#include "author/default_skeleton.hpp"
+#include "author/rig.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // clip_from_bvh / bvh_from_clip on small documents whose answers are computed by hand: channel
 // order, position-channel semantics, End Sites, root folding, unit and up-axis detection,
 // resampling and the clip -> BVH -> clip round trip.
-#include "anim/bvh_import.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/canonical_skeleton.hpp"
 #include "bvh_test_util.hpp"
 #include "support/test_paths.hpp"

@@ -1,7 +1,7 @@
 // The real captures in ../shared/mocap (Bandai-Namco, centimetres, Y up, 30 fps, a static
 // `joint_Root` above `Hips`): every file must import to a standing, plausibly sized character.
 // Skipped with a message when the folder is absent.
-#include "anim/bvh_import.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/root_motion.hpp"
 #include "bvh_test_util.hpp"
 #include "support/test_paths.hpp"

@@ -1,6 +1,6 @@
 // bvh_parse / bvh_write / bvh_load / bvh_save: accepted syntax, every rejection path with its line
 // number, exact write -> read round trips, and no crash on truncated or mutated input.
-#include "anim/bvh.hpp"
+#include "import/bvh.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #pragma once
 // Helpers shared by the BVH tests: a small humanoid built in code, and FK of an imported clip.
-#include "anim/bvh.hpp"
-#include "anim/bvh_import.hpp"
+#include "import/bvh.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/fk.hpp"
 
 #include <gtest/gtest.h>

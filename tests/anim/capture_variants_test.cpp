@@ -3,7 +3,7 @@
 // root position relative to its OFFSET, other Euler orders, other frame rates, finger and twist
 // joints), must import to the same body on the canonical skeleton: standing height within 1 cm,
 // feet on the floor within 2 cm, and every canonical joint where the original put it.
-#include "anim/bvh_import.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/canonical_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "support/bvh_variants.hpp"

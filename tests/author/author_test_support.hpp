@@ -1,7 +1,7 @@
 #pragma once
 // Shared helpers for the default-library tests: the library built once, forward kinematics, root
 // placements, and the measurements the tests assert on (foot skate, transition continuity).
-#include "anim/author/default_library.hpp"
+#include "author/default_library.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
 

@@ -1,5 +1,5 @@
-#include "anim/author/default_skeleton.hpp"
-#include "anim/author/rig.hpp"
+#include "author/default_skeleton.hpp"
+#include "author/rig.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
 

@@ -1,8 +1,8 @@
 // The procedural toolkit on its own: two-bone IK, key tracks, easing, foot timelines.
-#include "anim/author/easing.hpp"
-#include "anim/author/footsteps.hpp"
-#include "anim/author/key_track.hpp"
-#include "anim/author/two_bone_ik.hpp"
+#include "author/easing.hpp"
+#include "author/footsteps.hpp"
+#include "author/key_track.hpp"
+#include "author/two_bone_ik.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 // and never steps back: no stutter from lost, late, duplicated or reordered snapshots.
 #include "snapshot_buffer.hpp"
 
-#include "library/library_source.hpp"
-#include "protocol/impairment.hpp"
+#include "library_build/library_source.hpp"
+#include "transport/impairment.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #include "snapshot_buffer.hpp"
 
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "protocol/protocol.hpp"
 
 #include <gtest/gtest.h>

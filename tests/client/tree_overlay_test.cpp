@@ -2,7 +2,7 @@
 // from which placement, entered by which transition.
 #include "tree_overlay.hpp"
 
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Building the fighter database (fighter_database.hpp): from the default library, from BVH folders
 // with and without a sidecar, and the synthetic benchmark database.
-#include "anim/author/default_library.hpp"
-#include "anim/bvh.hpp"
-#include "anim/bvh_import.hpp"
+#include "author/default_library.hpp"
+#include "import/bvh.hpp"
+#include "import/bvh_import.hpp"
 #include "fighter/fighter_database.hpp"
 #include "support/test_paths.hpp"
 

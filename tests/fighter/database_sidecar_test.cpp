@@ -1,6 +1,6 @@
 // The strike sidecar (strike_annotation.hpp): round trips, and one test per way a file is broken,
 // each checking that the message names the file and the field.
-#include "anim/author/default_skeleton.hpp"
+#include "author/default_skeleton.hpp"
 #include "fighter/strike_annotation.hpp"
 #include "support/test_paths.hpp"
 

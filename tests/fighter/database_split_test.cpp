@@ -1,6 +1,6 @@
 // Splitting captured takes into one strike per entry (strike_split.hpp) on the real Bandai takes:
 // the punch takes hold 5 punches each, the kick take 3 kicks (each followed by a spin).
-#include "anim/bvh_import.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
 #include "fighter/strike_split.hpp"

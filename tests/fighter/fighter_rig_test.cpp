@@ -1,5 +1,5 @@
-#include "anim/author/default_skeleton.hpp"
-#include "anim/bvh_import.hpp"
+#include "author/default_skeleton.hpp"
+#include "import/bvh_import.hpp"
 #include "fighter/fighter_rig.hpp"
 #include "support/test_paths.hpp"
 

@@ -1,5 +1,5 @@
-#include "anim/author/default_library.hpp"
-#include "anim/bvh_import.hpp"
+#include "author/default_library.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/fk.hpp"
 #include "fighter/limb_representation.hpp"
 #include "fighter/morphology.hpp"

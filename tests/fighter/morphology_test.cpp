@@ -1,4 +1,4 @@
-#include "anim/author/default_skeleton.hpp"
+#include "author/default_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "fighter/morphology.hpp"
 

@@ -1,4 +1,4 @@
-#include "anim/bvh_import.hpp"
+#include "import/bvh_import.hpp"
 #include "anim/fk.hpp"
 #include "fighter/adaptation_support.hpp"
 #include "support/test_paths.hpp"

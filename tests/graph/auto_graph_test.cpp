@@ -1,6 +1,6 @@
-#include "graph/auto_graph.hpp"
+#include "graph_build/auto_graph.hpp"
 
-#include "graph/graph_edit.hpp"
+#include "graph_build/graph_edit.hpp"
 #include "graph_test_clips.hpp"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-#include "graph/declared_graph.hpp"
-#include "graph/graph_edit.hpp"
+#include "graph_build/declared_graph.hpp"
+#include "graph_build/graph_edit.hpp"
 #include "graph/motion_graph.hpp"
 
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 // the navigation (response, goals, collisions) is the same, because the stage only changes what
 // is shown.
 #include "lab/motion_quality.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "world/data_paths.hpp"
 
 #include <gtest/gtest.h>

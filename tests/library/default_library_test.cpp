@@ -1,5 +1,5 @@
-#include "graph/graph_edit.hpp"
-#include "library/library_source.hpp"
+#include "graph_build/graph_edit.hpp"
+#include "library_build/library_source.hpp"
 #include "library_checks.hpp"
 #include "world/collision_check.hpp"
 #include "world/collision_world.hpp"

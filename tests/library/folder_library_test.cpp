@@ -1,4 +1,4 @@
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "library/steerability.hpp"
 #include "anim/canonical_skeleton.hpp"
 #include "anim/fk.hpp"

@@ -2,8 +2,8 @@
 // Capture the team did not make, made more foreign still: the Bandai normal walk rescaled to
 // inches under a dummy root (and, if asked, with its rotation channels reordered), written to a
 // scratch folder and compiled with no unit hint, as a studio's export would arrive.
-#include "anim/bvh.hpp"
-#include "library/library_source.hpp"
+#include "import/bvh.hpp"
+#include "library_build/library_source.hpp"
 #include "support/bvh_variants.hpp"
 #include "support/test_paths.hpp"
 

@@ -1,5 +1,6 @@
-#include "graph/auto_graph.hpp"
+#include "graph_build/auto_graph.hpp"
 #include "library/motion_library.hpp"
+#include "library_build/library_compile.hpp"
 #include "library/playback.hpp"
 #include "library_checks.hpp"
 #include "../graph/graph_test_clips.hpp"

@@ -2,7 +2,7 @@
 // 0.8 m gap between pillars, a crouch walk the 1.0 m corridor under 1.2 m beams, where a walk
 // does not; every frame checked against the shipped scenes.
 #include "foreign_capture.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "world/collision_check.hpp"
 #include "world/data_paths.hpp"
 

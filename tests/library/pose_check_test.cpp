@@ -1,5 +1,5 @@
 // The shown-pose check against the scene, and its tolerance for observers of quantised snapshots.
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "anim/fk.hpp"
 #include "library/playback.hpp"
 #include "library/pose_check.hpp"

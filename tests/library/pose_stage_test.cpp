@@ -2,7 +2,7 @@
 // the steering's turn is eased, legs keep their bones; and the foot contact it relies on.
 #include "anim/canonical_skeleton.hpp"
 #include "library/foot_contact.hpp"
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "library/pose_stage.hpp"
 #include "library_checks.hpp"
 #include "foreign_capture.hpp"

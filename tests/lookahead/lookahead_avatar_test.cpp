@@ -1,8 +1,8 @@
 #include "lookahead/lookahead_avatar.hpp"
 
 #include "library/pose_check.hpp"
-#include "lookahead/recording_generator.hpp"
-#include "lookahead/replay.hpp"
+#include "scripted/recording_generator.hpp"
+#include "scripted/replay.hpp"
 #include "lookahead/scene_path.hpp"
 #include "lookahead_fixture.hpp"
 

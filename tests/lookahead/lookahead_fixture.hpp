@@ -1,6 +1,6 @@
 #pragma once
 // The default library and the built-in scenes, loaded once per test binary.
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"

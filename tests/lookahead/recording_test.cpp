@@ -1,7 +1,7 @@
 // Recordings: the file format (round trip, every kind of broken input), sample-and-hold, the
 // authoring route planner, the shipped recordings and the generator's determinism.
-#include "lookahead/recording.hpp"
-#include "lookahead/recording_generator.hpp"
+#include "scripted/recording.hpp"
+#include "scripted/recording_generator.hpp"
 #include "lookahead/scene_path.hpp"
 #include "lookahead_fixture.hpp"
 #include "support/test_paths.hpp"

@@ -4,10 +4,10 @@
 // route again when it has lost sight of it. docs/LOOKAHEAD.md "Recovering".
 #include "library/pose_check.hpp"
 #include "lookahead/lookahead_avatar.hpp"
-#include "lookahead/recording_generator.hpp"
-#include "lookahead/replay.hpp"
+#include "scripted/recording_generator.hpp"
+#include "scripted/replay.hpp"
 #include "lookahead/scene_path.hpp"
-#include "lookahead/scripted_player.hpp"
+#include "scripted/scripted_player.hpp"
 #include "lookahead_fixture.hpp"
 #include "world/collision_check.hpp"
 

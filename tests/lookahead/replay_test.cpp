@@ -1,8 +1,8 @@
 // Replaying recordings: the shipped ones reach their goals without collisions, deterministically;
 // no budget is safe; every strategy replays without collisions; the generator's run is reproduced
 // exactly by replaying what it recorded.
-#include "lookahead/recording_generator.hpp"
-#include "lookahead/replay.hpp"
+#include "scripted/recording_generator.hpp"
+#include "scripted/replay.hpp"
 #include "lookahead_fixture.hpp"
 
 #include <gtest/gtest.h>

@@ -1,10 +1,10 @@
 // The scripted player on its own (what a bot sees: positions in, keys out): planning and its
 // errors, the first key after the reaction delay, stopping at the goal, the wiggle when the avatar
 // is stuck, and that the recording generator built on it still makes the shipped recordings.
-#include "lookahead/recording.hpp"
-#include "lookahead/recording_generator.hpp"
+#include "scripted/recording.hpp"
+#include "scripted/recording_generator.hpp"
 #include "lookahead/scene_path.hpp"
-#include "lookahead/scripted_player.hpp"
+#include "scripted/scripted_player.hpp"
 #include "lookahead_fixture.hpp"
 
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 #include "protocol/input_packet.hpp"
 #include "protocol/packet.hpp"
 #include "protocol/quantize.hpp"
-#include "protocol/session_crypto.hpp"
-#include "protocol/udp_socket.hpp"
+#include "transport/session_crypto.hpp"
+#include "transport/udp_socket.hpp"
 #include "server.hpp"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 #include "bot_match.hpp"
 #include "support/test_paths.hpp"
 
-#include "protocol/scene_transfer.hpp"
+#include "transport/scene_transfer.hpp"
 #include "world/data_paths.hpp"
 
 #include <gtest/gtest.h>

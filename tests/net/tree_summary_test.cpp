@@ -4,7 +4,7 @@
 #include "tree_summary.hpp"
 #include "support/segments.hpp"
 
-#include "library/library_source.hpp"
+#include "library_build/library_source.hpp"
 #include "protocol/quantize.hpp"
 #include "world/data_paths.hpp"
 

@@ -3,8 +3,8 @@
 // refusals, timeouts and every kind of datagram the client must drop.
 #include "support/alloc_counter.hpp"
 #include "protocol/sent_views.hpp"
-#include "protocol/client_connection.hpp"
-#include "protocol/session_crypto.hpp"
+#include "transport/client_connection.hpp"
+#include "transport/session_crypto.hpp"
 #include "protocol/input_packet.hpp"
 
 #include <gtest/gtest.h>

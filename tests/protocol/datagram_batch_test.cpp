@@ -1,7 +1,7 @@
-// Datagrams sent in sendmmsg batches (protocol/datagram_batch.hpp) over real UDP sockets on
+// Datagrams sent in sendmmsg batches (transport/datagram_batch.hpp) over real UDP sockets on
 // loopback: every one arrives whole, in order, at its own address, past a full batch; what the
 // kernel cannot take is counted, never silently lost.
-#include "protocol/datagram_batch.hpp"
+#include "transport/datagram_batch.hpp"
 
 #include <gtest/gtest.h>
 

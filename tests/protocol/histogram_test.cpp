@@ -1,5 +1,5 @@
 // LogHistogram: percentiles within one bin (2 %) of the exact ones, merging equals adding.
-#include "protocol/histogram.hpp"
+#include "transport/histogram.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-// The impairment layer (protocol/impairment.hpp): the shares of loss, duplication and reordering
+// The impairment layer (transport/impairment.hpp): the shares of loss, duplication and reordering
 // it was asked for, delays within latency +- jitter, release in due order, the same fate for the
 // same seed, bad settings refused, a full queue dropping (counted) instead of growing, and no
 // allocation once built.
-#include "protocol/impairment.hpp"
+#include "transport/impairment.hpp"
 
 #include "support/alloc_counter.hpp"
 

@@ -1,7 +1,7 @@
-// Sealed sessions (protocol/session_crypto.hpp): what one side seals the other opens, and nothing
+// Sealed sessions (transport/session_crypto.hpp): what one side seals the other opens, and nothing
 // else: a flipped bit, another key, another session, a replay, a sequence too old for the window,
 // a Sealed inside a Sealed are all refused, with the reason counted by the receiver.
-#include "protocol/session_crypto.hpp"
+#include "transport/session_crypto.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // an extra parent joint (a dummy root, a twist bone), other Euler orders, a higher frame rate,
 // fingers. Tests build capture variants from the Bandai takes with these (never copies on disk
 // in the repository: the takes' licence keeps them in ../shared/mocap).
-#include "anim/bvh.hpp"
+#include "import/bvh.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtx/euler_angles.hpp>

@@ -5,7 +5,7 @@
 #include "terrain/terrain_avatar.hpp"
 #include "terrain_test_util.hpp"
 
-#include "anim/author/default_skeleton.hpp"
+#include "author/default_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "support/alloc_counter.hpp"
 #include "world/data_paths.hpp"

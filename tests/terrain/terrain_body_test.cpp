@@ -5,7 +5,7 @@
 #include "terrain/terrain_walker.hpp"
 #include "terrain_test_util.hpp"
 
-#include "anim/author/default_skeleton.hpp"
+#include "author/default_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "math/splitmix64.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Subcommands of foresight-motion. Each returns the process exit code.
-#include "library/library_source.hpp"
-#include "lookahead/replay.hpp"
+#include "library_build/library_source.hpp"
+#include "scripted/replay.hpp"
 
 #include <cstdint>
 #include <string>

@@ -1,5 +1,5 @@
 // info, graph and export-bvh: read-only views of a library.
-#include "anim/bvh.hpp"
+#include "import/bvh.hpp"
 #include "commands.hpp"
 #include "library/steerability.hpp"
 

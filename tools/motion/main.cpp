@@ -5,7 +5,7 @@
 //   foresight-motion play [--scene maze] [--seconds 30] [--seed 1] [--motions DIR]
 //   foresight-motion steer --recording FILE [--strategy command] [--expansions 300]
 #include "commands.hpp"
-#include "library/motion_source_cli.hpp"
+#include "library_build/motion_source_cli.hpp"
 
 #include <CLI/CLI.hpp>
 

@@ -1,8 +1,8 @@
 // steer: an avatar steered by a recorded player through a scene with look-ahead, headless,
 // printing every motion it starts and the size of its feasible motion tree.
 #include "commands.hpp"
-#include "lookahead/recording.hpp"
-#include "lookahead/replay.hpp"
+#include "scripted/recording.hpp"
+#include "scripted/replay.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
 

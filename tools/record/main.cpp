@@ -4,8 +4,8 @@
 //                    [--budget 200] [--max-seconds 240] [--steer-deg-per-s 0] [--trace PATH.csv]
 // Prints the route length, the duration, the samples and whether the goal was reached; exits 0
 // when it was, 2 when the recording was written but the goal not reached, 1 on errors.
-#include "library/library_source.hpp"
-#include "lookahead/recording_generator.hpp"
+#include "library_build/library_source.hpp"
+#include "scripted/recording_generator.hpp"
 #include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
