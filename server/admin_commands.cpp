@@ -1,5 +1,5 @@
 // The supervisor's and the admin's commands (admin_commands.hpp), run on the tick thread.
-#include "player.hpp"
+#include "server.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -45,10 +45,9 @@ AdminReply Server::admin_command(const std::string& line) {
     if (auto u = usage(0, "fighters")) return *u;
     std::string out = std::to_string(num_fighters_) + " fighters";
     static const char* phases[] = {"rest", "follow", "strike", "recover"};
-    for (const auto& f : players_) {
-      if (!f->is_fighter()) continue;
-      const FighterNpc& n = *f->fighter;
-      out += "\n  " + std::to_string(f->avatar_id) + " " + n.name + " (" +
+    for (const Fighter& f : fighters_.items()) {
+      const FighterNpc& n = *f.npc;
+      out += "\n  " + std::to_string(f.id) + " " + n.name + " (" +
              morphology_specs()[static_cast<size_t>(n.morphology)].name + "): " +
              phases[static_cast<int>(n.brain.phase())] + ", target " +
              (n.target_id != 0 ? std::to_string(n.target_id) : std::string("none"));
@@ -59,8 +58,7 @@ AdminReply Server::admin_command(const std::string& line) {
   if (verb == "auto") {
     if (auto u = usage(1, "auto on|off")) return *u;
     if (who != "on" && who != "off") return {400, "usage: auto on|off"};
-    for (const auto& f : players_)
-      if (f->is_fighter()) f->fighter->brain.set_auto_attack(who == "on");
+    for (const Fighter& f : fighters_.items()) f.npc->brain.set_auto_attack(who == "on");
     return {200, std::string("fighters' own policy ") + (who == "on" ? "on" : "off")};
   }
   if (verb == "order") {
@@ -106,10 +104,9 @@ AdminReply Server::admin_set(const std::string& key, const std::string& value) {
     std::string error;
     if (!strategy_parse(value, s, error)) return {400, error};
     config_.strategy = tree_config_.strategy = s;
-    for (const auto& p : players_) {
-      if (!p->avatar) continue;
-      p->avatar->tree().set_strategy(s);
-      p->input_changed = true;  // re-prioritise under the new strategy at the next growth
+    for (GraphAvatar& g : graph_avatars_.items()) {
+      g.avatar->tree().set_strategy(s);
+      g.input_changed = true;  // re-prioritise under the new strategy at the next growth
     }
     return {200, "strategy " + std::string(strategy_name(s)) + " (trees regrow from their roots)"};
   }

@@ -3,9 +3,6 @@
 #include "io/text_file.hpp"
 #include "library/body_fit.hpp"
 
-#include "player.hpp"
-
-#include "protocol/player_name.hpp"
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
 #include "transport/scene_transfer.hpp"
@@ -20,23 +17,6 @@
 namespace foresight::server {
 
 namespace {
-
-double ms_between(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-bool same_endpoint(const protocol::Endpoint& a, const protocol::Endpoint& b) {
-  return a.address() == b.address() && a.port() == b.port();
-}
-
-// A hash key for the player table (IPv4: exact; IPv6: hashed, confirmed by same_endpoint).
-uint64_t endpoint_key(const protocol::Endpoint& e) {
-  std::array<uint8_t, 16> storage;
-  const auto bytes = protocol::endpoint_address_bytes(e, storage);
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
-  return (h << 16) ^ e.port();
-}
 
 // Frames of clip time due at the end of tick `tick` (clips play in real time at `fps` whatever the
 // tick rate).
@@ -81,18 +61,32 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   if (terrain_mode_ && (config_.fighters > 0 || (config_.fighters < 0 && !scene_.npcs.empty())))
     std::fprintf(stderr, "foresight-server: no NPC fighters on terrain (they walk the motion graph)\n");
   if (terrain_mode_) config_.fighters = 0;
-  if (!socket_.open(config_.bind_address, config_.port, error)) return false;
-  receive_buffer_.resize(protocol::kMaxDatagramBytes + 1);
+  SessionSettings sessions;
+  sessions.scene_name = scene_.name;
+  sessions.library_name = library_.name;
+  sessions.library_hash = library_.content_hash;
+  sessions.scene_hash = scene_hash_;
+  sessions.scene_bytes = static_cast<uint32_t>(scene_file_.size());
+  sessions.tick_hz = static_cast<uint16_t>(config_.tick_hz);
+  sessions.snapshot_hz = static_cast<uint16_t>(config_.snapshot_hz);
+  sessions.max_players = config_.max_players;
+  sessions.max_joins_per_tick = config_.max_joins_per_tick;
+  sessions.max_challenges_per_tick = config_.max_challenges_per_tick;
+  sessions.max_packets_per_s = config_.max_packets_per_s;
+  sessions.session_timeout_s = config_.session_timeout_s;
+  if (!sessions_.open(config_.bind_address, config_.port, sessions, error)) return false;
   reservations_.configure(scene_.bounds);
   if (!plan_spawn_places(error)) return false;
   workers_ = std::make_unique<LookaheadWorkers>(config_.threads);
+  scheduler_ = std::make_unique<LookaheadScheduler>(config_, library_, *workers_);
   for (int w = 0; w < workers_->threads(); ++w) snapshot_builders_.push_back(std::make_unique<SnapshotBuilder>());
-  grow_deadline_.resize(static_cast<size_t>(config_.threads));
-  players_.reserve(static_cast<size_t>(config_.max_players));
-  tree_players_.reserve(players_.capacity() + 256);  // + fighters
-  terrain_neighbours_.reserve(players_.capacity());
-  snapshot_terrain_.reserve(players_.capacity());
-  terrain_before_.reserve(players_.capacity() + 257);  // players, fighters, one past
+  const auto max_players = static_cast<size_t>(std::max(config_.max_players, 0));
+  graph_avatars_.reserve(max_players + 256);  // + fighters
+  terrain_walkers_.reserve(max_players);
+  roster_.reserve(max_players + 256);
+  terrain_neighbours_.reserve(max_players);
+  snapshot_terrain_.reserve(max_players);
+  terrain_before_.reserve(max_players + 257);  // players, fighters, one past
   started_ = Clock::now();
   if (!spawn_fighters(error)) return false;
   if (config_.admin_port >= 0) {
@@ -130,23 +124,45 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   return true;
 }
 
-int Server::num_players() const { return static_cast<int>(players_.size()) - num_fighters_; }
+GraphAvatar* Server::graph_avatar(uint32_t id) {
+  const RosterEntry* e = roster_.find(id);
+  return e != nullptr && e->kind == AvatarKind::kGraph ? graph_avatars_.get(e->avatar) : nullptr;
+}
+
+const GraphAvatar* Server::graph_avatar(uint32_t id) const {
+  const RosterEntry* e = roster_.find(id);
+  return e != nullptr && e->kind == AvatarKind::kGraph ? graph_avatars_.get(e->avatar) : nullptr;
+}
+
+const GraphAvatar* Server::player_avatar(uint32_t id) const {
+  const GraphAvatar* g = graph_avatar(id);
+  return g != nullptr && !g->npc ? g : nullptr;
+}
+
+Fighter* Server::fighter(uint32_t id) {
+  const GraphAvatar* g = graph_avatar(id);
+  return g != nullptr ? fighters_.get(g->fighter) : nullptr;
+}
+
+const Fighter* Server::fighter(uint32_t id) const {
+  const GraphAvatar* g = graph_avatar(id);
+  return g != nullptr ? fighters_.get(g->fighter) : nullptr;
+}
 
 const LookaheadAvatar* Server::avatar(uint32_t avatar_id) const {
-  for (const auto& p : players_)
-    if (p->avatar_id == avatar_id) return p->avatar.get();
-  return nullptr;
+  const GraphAvatar* g = graph_avatar(avatar_id);
+  return g != nullptr ? g->avatar.get() : nullptr;
 }
 
 const terrain::TerrainAvatar* Server::terrain_avatar(uint32_t avatar_id) const {
-  for (const auto& p : players_)
-    if (p->avatar_id == avatar_id) return p->terrain.get();
-  return nullptr;
+  const RosterEntry* e = roster_.find(avatar_id);
+  const TerrainWalker* w = e != nullptr && e->kind == AvatarKind::kTerrain ? terrain_walkers_.get(e->avatar) : nullptr;
+  return w != nullptr ? w->avatar.get() : nullptr;
 }
 
 std::vector<uint32_t> Server::avatar_ids() const {
   std::vector<uint32_t> ids;
-  for (const auto& p : players_) ids.push_back(p->avatar_id);
+  for (const RosterEntry& e : roster_.entries()) ids.push_back(e.id);
   return ids;
 }
 
@@ -164,34 +180,44 @@ void Server::run() {
 }
 
 void Server::close_sessions() {
-  for (size_t i = players_.size(); i-- > 0;) {
-    if (players_[i]->is_fighter()) continue;
-    for (int copy = 0; copy < 2; ++copy) {
-      auto& fbb = writer_.begin();
-      const auto text = fbb.CreateString("the server is shutting down");
-      send_sealed(*players_[i], writer_.finish(wire::CreateRefuse(fbb, wire::RefuseReason::ShuttingDown, text,
-                                                                  library_.content_hash)));
-    }
-    ++counters_.sessions_closed;
-    remove_player(i);
-  }
-  join_queue_.clear();
+  sessions_.close_all(*this);
   if (agones_) agones_->shutdown();  // after the players were told
 }
 
+// ---------------------------------------------------------------------------------------------
+// The tick
+
 void Server::run_tick(Clock::time_point now) {
   // `now` is the protocol's clock (tests pass their own); the work is measured on the real one.
-  const Clock::time_point tick_start = Clock::now();
-  last_tick_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                          std::chrono::steady_clock::now().time_since_epoch())
-                          .count(),
+  StageTimer timer;
+  last_tick_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(timer.start().time_since_epoch()).count(),
                       std::memory_order_relaxed);
   ++tick_;
-  challenges_this_tick_ = 0;
   TickRecord record;
-  receive(now);
-  admit_joins(now);
-  expire(now);
+  // 1 receive: datagrams, then queued joins, then sessions gone silent.
+  sessions_.start_tick();
+  sessions_.receive(now, *this);
+  sessions_.admit_joins(now, *this);
+  sessions_.expire(now, *this);
+  // 2 commands from the supervisor and the admin endpoint.
+  run_admin_commands();
+  // 3 think: fighters choose their command as players' keys arrived in 1.
+  think_fighters();
+  record.receive_ms = timer.lap_ms();
+  // 4 look ahead, then 5 decide and play: the order of LookaheadAvatar (set_input, grow, step).
+  scheduler_->grow(graph_avatars_.items(), tick_, timer.start(), record);
+  timer.lap_ms();  // the scheduler times its own part (record.lookahead_ms)
+  advance(record);
+  record.advance_ms = timer.lap_ms();
+  // 6 send.
+  send_snapshots(now);
+  check_contacts();
+  record.send_ms = timer.lap_ms();
+  // 7 finish.
+  finish_tick(record, timer);
+}
+
+void Server::run_admin_commands() {
   admin_queue_->take(admin_requests_);
   for (const AdminRequest& r : admin_requests_) {
     const AdminReply reply = admin_command(r.line);
@@ -202,22 +228,13 @@ void Server::run_tick(Clock::time_point now) {
       std::fflush(stdout);
     }
   }
-  think_fighters(now);
-  const Clock::time_point received = Clock::now();
-  record.receive_ms = static_cast<float>(ms_between(tick_start, received));
-  // Look ahead, then decide: the avatar's order of LookaheadAvatar (set_input, grow, step).
-  grow_trees(tick_start, received, record);
-  const Clock::time_point grown = Clock::now();
-  advance(record);
-  const Clock::time_point advanced = Clock::now();
-  record.advance_ms = static_cast<float>(ms_between(grown, advanced));
-  send_snapshots(now);
-  check_contacts();
-  record.send_ms = static_cast<float>(ms_between(advanced, Clock::now()));
-  tail_ms_estimate_ = 0.9 * tail_ms_estimate_ + 0.1 * (record.advance_ms + record.send_ms);
+}
+
+void Server::finish_tick(TickRecord& record, const StageTimer& timer) {
+  scheduler_->note_tail_ms(record.advance_ms + record.send_ms);
   record.players = num_players();
   for (int i = 0; i < 4 && !retired_.empty(); ++i) retired_.pop_back();
-  record.tick_ms = static_cast<float>(ms_between(tick_start, Clock::now()));
+  record.tick_ms = timer.total_ms();
   const bool overrun = record.tick_ms > 1000.0f / static_cast<float>(config_.tick_hz);
   stats_.record(record, overrun);
   if (overrun && tick_ >= next_overrun_log_tick_) {  // at most one line a second
@@ -248,7 +265,7 @@ void Server::publish_admin(Clock::time_point now) {
   m.players = num_players();
   m.max_players = config_.max_players;
   m.fighters = num_fighters_;
-  m.joins_waiting = static_cast<int>(join_queue_.size());
+  m.joins_waiting = static_cast<int>(sessions_.joins_waiting());
   if (m.scene.empty()) {  // once: no allocation per tick
     m.scene = scene_.name;
     m.locomotion = terrain_mode_ ? "terrain" : "graph";
@@ -284,10 +301,8 @@ void Server::publish_admin(Clock::time_point now) {
 MemoryFigures Server::memory_figures() const {
   MemoryFigures f;
   f.resident_bytes = resident_memory_bytes();
-  for (const auto& p : players_) {
-    if (p->avatar) f.tree_node_bytes += p->avatar->tree().node_bytes();
-    f.snapshot_history_bytes += p->sent_views.bytes();
-  }
+  for (const GraphAvatar& g : graph_avatars_.items()) f.tree_node_bytes += g.avatar->tree().node_bytes();
+  for (const Session& s : sessions_.sessions()) f.snapshot_history_bytes += s.sent_views.bytes();
   f.snapshot_history_bytes += snapshot_archive_.bytes();
   return f;
 }
@@ -321,260 +336,65 @@ void Server::log_status() const {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Receiving
+// Sessions: what joining, a session's messages and leaving mean in the game
 
-void Server::receive(Clock::time_point now) {
-  protocol::Endpoint from;
-  // Bounded: a flood cannot keep the tick in here (what is left waits for the next tick).
-  for (int budget = 20000; budget > 0; --budget) {
-    const ptrdiff_t n = socket_.receive(receive_buffer_, from);
-    if (n < 0) break;
-    ++counters_.packets_in;
-    counters_.bytes_in += static_cast<uint64_t>(n);
-    protocol::DropReason reason;
-    const wire::Packet* packet =
-        protocol::packet_read({receive_buffer_.data(), static_cast<size_t>(n)}, reason);
-    if (packet == nullptr) {
-      counters_.drops.add(reason);
-      continue;
+bool Server::on_join(Session& s, Clock::time_point, wire::RefuseReason& reason, std::string& why) {
+  Placement spawn;
+  if (!find_spawn(spawn)) {
+    ++counters_.spawn_refusals;
+    reason = wire::RefuseReason::NoSpawnPlace;
+    why = "no free spawn place: every place near the spawns is taken by other avatars; try again later";
+    return false;
+  }
+  const uint32_t id = next_avatar_;
+  if (terrain_mode_) {
+    auto walker = std::make_unique<terrain::TerrainAvatar>();
+    if (!terrain::terrain_avatar_init(*walker, terrain_config_, scene_, spawn.pos_m, spawn.heading_rad)) {
+      ++counters_.spawn_refusals;
+      reason = wire::RefuseReason::NoSpawnPlace;
+      why = "no ground at the free spawn place: try again later";
+      return false;
     }
-    handle(from, *packet, static_cast<size_t>(n), now);
+    roster_.add({id, AvatarKind::kTerrain, terrain_walkers_.add({id, std::move(walker), {}})});
+  } else {
+    GraphAvatar g;
+    g.id = id;
+    g.avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, spawn);
+    roster_.add({id, AvatarKind::kGraph, graph_avatars_.add(std::move(g))});
+    // Reserve the spawn at once, so a second player joining this tick keeps clear of it.
+    reservations_.add(static_cast<int>(id), library_, spawn_segment_, 0, spawn);
   }
+  ++next_avatar_;
+  s.avatar_id = id;
+  return true;
 }
 
-Server::Player* Server::find_player(const protocol::Endpoint& from) {
-  const auto it = by_endpoint_.find(endpoint_key(from));
-  return it != by_endpoint_.end() && same_endpoint(it->second->endpoint, from) ? it->second : nullptr;
+void Server::on_leave(const Session& s) {
+  const RosterEntry* e = roster_.find(s.avatar_id);
+  if (e == nullptr) return;
+  if (e->kind == AvatarKind::kGraph) {
+    retired_.push_back(graph_avatars_.remove(e->avatar).avatar);
+  } else {
+    terrain_walkers_.remove(e->avatar);
+  }
+  roster_.remove(s.avatar_id);
 }
 
-void Server::handle(const protocol::Endpoint& from, const wire::Packet& packet, size_t bytes,
-                    Clock::time_point now) {
+void Server::on_message(Session& s, const wire::Packet& message) {
   using wire::Message;
-  switch (packet.message_type()) {
-    case Message::ConnectRequest:
-      on_connect_request(from, *packet.message_as_ConnectRequest(), bytes, now);
-      return;
-    case Message::ConnectResponse:
-      on_connect_response(from, *packet.message_as_ConnectResponse(), now);
-      return;
-    case Message::Sealed: break;
-    case Message::Input:
-    case Message::Heartbeat:
-    case Message::Disconnect:
-    case Message::StatsRequest:
-    case Message::TreeRequest:  // only inside a Sealed message: anyone could have sent this
-    case Message::SceneRequest:
-      counters_.drops.add(protocol::DropReason::kUnauthenticated);
-      return;
-    default: counters_.drops.add(protocol::DropReason::kUnexpected); return;
-  }
-  // A session's message: the sender must be a player.
-  Player* p = find_player(from);
-  if (p == nullptr) {
-    counters_.drops.add(protocol::DropReason::kUnexpected);
-    return;
-  }
-  protocol::DropReason reason = protocol::DropReason::kNone;
-  const wire::Packet* inner = p->opener.open(*packet.message_as_Sealed(), reason);
-  if (inner == nullptr) {
-    counters_.drops.add(reason);  // forged, corrupted, another session's, or replayed
-    return;
-  }
-  // Token bucket: max_packets_per_s sustained, one second's worth of burst. Charged only for
-  // what the player really sent: charged before opening, datagrams forged with the player's
-  // address spent its allowance and its own inputs were dropped (issue 19). Opening is a few
-  // hundred nanoseconds, and receive() takes a bounded number of datagrams a tick.
-  const double rate = config_.max_packets_per_s;
-  p->tokens = std::min(rate, p->tokens + rate * std::chrono::duration<double>(now - p->tokens_at).count());
-  p->tokens_at = now;
-  if (p->tokens < 1.0) {
-    counters_.drops.add(protocol::DropReason::kRateLimited);
-    return;
-  }
-  p->tokens -= 1.0;
-  handle_session(*p, *inner, now);
-}
-
-void Server::handle_session(Player& p, const wire::Packet& packet, Clock::time_point now) {
-  using wire::Message;
-  uint32_t session = 0;
-  if (auto* m = packet.message_as_Input()) session = m->session();
-  if (auto* m = packet.message_as_Heartbeat()) session = m->session();
-  if (auto* m = packet.message_as_Disconnect()) session = m->session();
-  if (auto* m = packet.message_as_StatsRequest()) session = m->session();
-  if (auto* m = packet.message_as_TreeRequest()) session = m->session();
-  if (auto* m = packet.message_as_SceneRequest()) session = m->session();
-  if (p.session != session) {  // sealed by this session's key, yet naming another
-    counters_.drops.add(protocol::DropReason::kUnexpected);
-    return;
-  }
-  p.last_heard = now;
-  switch (packet.message_type()) {
-    case Message::Input: on_input(p, *packet.message_as_Input()); break;
-    case Message::Heartbeat: p.echo_client_time_ms = packet.message_as_Heartbeat()->client_time_ms(); break;
-    case Message::StatsRequest: send_stats(p); break;
-    case Message::TreeRequest: send_tree(p); break;
-    case Message::SceneRequest: send_scene_part(p, packet.message_as_SceneRequest()->offset()); break;
-    case Message::Disconnect:
-      ++counters_.sessions_closed;
-      for (size_t i = 0; i < players_.size(); ++i)
-        if (players_[i].get() == &p) {
-          remove_player(i);
-          break;
-        }
-      break;
+  switch (message.message_type()) {
+    case Message::Input: on_input(s, *message.message_as_Input()); break;
+    case Message::StatsRequest: send_stats(s); break;
+    case Message::TreeRequest: send_tree(s); break;
+    case Message::SceneRequest: send_scene_part(s, message.message_as_SceneRequest()->offset()); break;
     default: break;
   }
 }
 
-void Server::on_connect_request(const protocol::Endpoint& from, const wire::ConnectRequest& m,
-                                size_t bytes, Clock::time_point now) {
-  if (bytes < protocol::kMinConnectRequestBytes) {
-    counters_.drops.add(protocol::DropReason::kTooSmall);  // unpadded: could amplify
-    return;
-  }
-  // Every answer to an address not yet proven (a challenge or a refusal) shares one per-tick
-  // budget: refusals of a wrong version were sent before it, 1,000 requests got 1,000 answers,
-  // an uncapped reflector (issue 19).
-  if (challenges_this_tick_ >= config_.max_challenges_per_tick) {
-    ++counters_.challenges_capped;
-    return;
-  }
-  ++challenges_this_tick_;
-  if (m.protocol() != protocol::kProtocolVersion) {
-    send_refuse(from, wire::RefuseReason::ProtocolVersion,
-                "protocol version " + std::to_string(m.protocol()) + " is not the server's " +
-                    std::to_string(protocol::kProtocolVersion) + ": update the client");
-    return;
-  }
-  std::array<uint8_t, 16> storage;
-  const auto seconds = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count());
-  const protocol::Cookie cookie = cookies_.make(protocol::endpoint_address_bytes(from, storage), from.port(), seconds);
-  auto& fbb = writer_.begin();
-  const auto c = fbb.CreateVector(cookie.data(), cookie.size());
-  send(writer_.finish(wire::CreateChallenge(fbb, c)), from);
-  ++counters_.challenges_sent;
-}
-
-void Server::on_connect_response(const protocol::Endpoint& from, const wire::ConnectResponse& m,
-                                 Clock::time_point now) {
-  if (Player* existing = find_player(from)) {  // our Accept was lost: say it again
-    send_accept(*existing);
-    return;
-  }
-  std::array<uint8_t, 16> storage;
-  const auto seconds = static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::seconds>(now.time_since_epoch()).count());
-  const auto* cookie = m.cookie();
-  if (cookie == nullptr ||
-      !cookies_.check({cookie->data(), cookie->size()}, protocol::endpoint_address_bytes(from, storage),
-                      from.port(), seconds)) {
-    // The sender's address is unproven: a refusal to it shares the challenges' per-tick budget, so
-    // forged responses cannot make the server a reflector either.
-    if (challenges_this_tick_ >= config_.max_challenges_per_tick) {
-      ++counters_.challenges_capped;
-      return;
-    }
-    ++challenges_this_tick_;
-    send_refuse(from, wire::RefuseReason::BadCookie, "connection cookie wrong or expired: connect again");
-    return;
-  }
-  if (m.protocol() != protocol::kProtocolVersion) {
-    send_refuse(from, wire::RefuseReason::ProtocolVersion, "protocol version mismatch: update the client");
-    return;
-  }
-  if (m.library_hash() != library_.content_hash) {
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "motion library differs: yours has hash %016llx, the server's '%s' has %016llx; "
-                  "start with the same --motions as the server",
-                  static_cast<unsigned long long>(m.library_hash()), library_.name.c_str(),
-                  static_cast<unsigned long long>(library_.content_hash));
-    send_refuse(from, wire::RefuseReason::Library, text);
-    return;
-  }
-  if (num_players() + static_cast<int>(join_queue_.size()) >= config_.max_players) {
-    send_refuse(from, wire::RefuseReason::ServerFull, "server full");
-    return;
-  }
-  const auto* client_key = m.client_key();
-  if (client_key == nullptr || client_key->size() != protocol::kSessionKeyBytes) {
-    send_refuse(from, wire::RefuseReason::ProtocolVersion, "no session key in the ConnectResponse: update the client");
-    return;
-  }
-  // Verified (the cookie proves the address): queue it, once; admit_joins() takes a few per tick.
-  const uint64_t key = endpoint_key(from);
-  for (const PendingJoin& j : join_queue_)
-    if (j.key == key && same_endpoint(j.endpoint, from)) {  // already waiting: say so, it keeps waiting
-      send_refuse(from, wire::RefuseReason::Queued, "waiting to join: the server admits a few players a tick");
-      return;
-    }
-  if (!join_queue_.empty()) ++counters_.joins_deferred;
-  PendingJoin join{from, key, m.client_name() ? protocol::printable_name(m.client_name()->string_view()) : std::string(), {}};
-  std::copy(client_key->begin(), client_key->end(), join.client_key.begin());
-  join_queue_.push_back(std::move(join));
-}
-
-void Server::admit_joins(Clock::time_point now) {
-  for (int admitted = 0; admitted < config_.max_joins_per_tick && !join_queue_.empty(); ++admitted) {
-    PendingJoin join = std::move(join_queue_.front());
-    join_queue_.pop_front();
-    admit(join, now);
-  }
-}
-
-void Server::admit(const PendingJoin& join, Clock::time_point now) {
-  const protocol::Endpoint& from = join.endpoint;
-  Placement spawn;
-  if (!find_spawn(spawn)) {
-    ++counters_.spawn_refusals;
-    send_refuse(from, wire::RefuseReason::NoSpawnPlace,
-                "no free spawn place: every place near the spawns is taken by other avatars; try again later");
-    return;
-  }
-  auto p = std::make_unique<Player>();
-  p->endpoint = from;
-  p->session = next_session_++;
-  p->avatar_id = next_avatar_++;
-  p->sent_views.set_owner(p->avatar_id);
-  p->name = join.name;
-  // The session's keys (session_crypto.hpp): ours for this session, the client's from its response.
-  const protocol::SessionKeyPair pair = protocol::session_keypair();
-  protocol::SessionKeys keys;
-  if (!protocol::session_keys_server(pair, join.client_key, keys)) {
-    send_refuse(from, wire::RefuseReason::ProtocolVersion, "unusable session key: update the client");
-    return;
-  }
-  p->sealer.set(p->session, keys.send);
-  p->opener.set(p->session, keys.receive);
-  p->server_public_key = pair.public_key;
-  if (terrain_mode_) {
-    p->terrain = std::make_unique<terrain::TerrainAvatar>();
-    if (!terrain::terrain_avatar_init(*p->terrain, terrain_config_, scene_, spawn.pos_m, spawn.heading_rad)) {
-      ++counters_.spawn_refusals;
-      send_refuse(from, wire::RefuseReason::NoSpawnPlace, "no ground at the free spawn place: try again later");
-      return;
-    }
-  } else {
-    p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, tree_config_, spawn_segment_, spawn);
-    // Reserve the spawn at once, so a second player joining this tick keeps clear of it.
-    reservations_.add(static_cast<int>(p->avatar_id), library_, spawn_segment_, 0, spawn);
-  }
-  p->last_heard = now;
-  p->tokens = config_.max_packets_per_s;
-  p->tokens_at = now;
-  send_accept(*p);
-  ++counters_.sessions_opened;
-  std::fprintf(stderr, "foresight-server: player %u '%s' joined from %s:%u (session %u, %d players)\n",
-               p->avatar_id, p->name.c_str(), from.address().to_string().c_str(), from.port(), p->session,
-               num_players() + 1);
-  by_endpoint_[endpoint_key(from)] = p.get();
-  players_.push_back(std::move(p));
-}
-
-void Server::on_input(Player& p, const wire::Input& m) {
+void Server::on_input(Session& s, const wire::Input& m) {
   // The client holds that snapshot whole: later ones may code its avatars against it.
-  p.sent_views.acknowledge(snapshot_archive_, m.ack_snapshot());
-  p.echo_client_time_ms = m.client_time_ms();
+  s.sent_views.acknowledge(snapshot_archive_, m.ack_snapshot());
+  s.echo_client_time_ms = m.client_time_ms();
   const auto* commands = m.commands();
   if (commands == nullptr || commands->size() == 0) return;
   if (commands->size() > static_cast<flatbuffers::uoffset_t>(protocol::kInputRedundancy)) {
@@ -584,68 +404,44 @@ void Server::on_input(Player& p, const wire::Input& m) {
   // Commands are held directions: the newest one not yet applied is what the player holds now.
   // Older ones in the packet were either applied already or superseded.
   const wire::InputCommand* newest = commands->Get(commands->size() - 1);
-  if (p.any_input && static_cast<int32_t>(newest->sequence() - p.last_input_seq) <= 0) return;
+  if (s.any_input && static_cast<int32_t>(newest->sequence() - s.last_input_seq) <= 0) return;
   const ControlInput in = protocol::control_input_from_command(*newest);
-  if (in.camera_dir != p.input.camera_dir || in.camera_yaw_rad != p.input.camera_yaw_rad ||
-      in.crouch != p.input.crouch) {
-    p.input = in;
-    p.input_changed = true;
+  s.last_input_seq = newest->sequence();
+  s.any_input = true;
+  const RosterEntry* e = roster_.find(s.avatar_id);
+  if (e == nullptr) return;
+  if (e->kind == AvatarKind::kTerrain) {
+    terrain_walkers_.get(e->avatar)->input = in;
+    return;
   }
-  p.last_input_seq = newest->sequence();
-  p.any_input = true;
+  GraphAvatar& g = *graph_avatars_.get(e->avatar);
+  if (in.camera_dir != g.input.camera_dir || in.camera_yaw_rad != g.input.camera_yaw_rad || in.crouch != g.input.crouch) {
+    g.input = in;
+    g.input_changed = true;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
 // Sending
 
-void Server::send(std::span<const uint8_t> bytes, const protocol::Endpoint& to) {
-  if (socket_.send(bytes, to)) {
-    ++counters_.packets_out;
-    counters_.bytes_out += bytes.size();
-  } else {
-    ++counters_.send_failures;
-  }
-}
-
-void Server::send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message) {
-  auto& fbb = writer_.begin();
-  const auto text = fbb.CreateString(message);
-  send(writer_.finish(wire::CreateRefuse(fbb, reason, text, library_.content_hash)), to);
-  if (reason != wire::RefuseReason::ShuttingDown && reason != wire::RefuseReason::Queued) ++counters_.refused;
-}
-
-void Server::send_accept(const Player& p) {
-  auto& fbb = writer_.begin();
-  const auto scene = fbb.CreateString(scene_.name);
-  const auto lib = fbb.CreateString(library_.name);
-  const auto key = fbb.CreateVector(p.server_public_key.data(), p.server_public_key.size());
-  send(writer_.finish(wire::CreateAccept(fbb, p.session, p.avatar_id, scene, lib, library_.content_hash,
-                                         static_cast<uint16_t>(config_.tick_hz),
-                                         static_cast<uint16_t>(config_.snapshot_hz), key, scene_hash_,
-                                         static_cast<uint32_t>(scene_file_.size()))),
-       p.endpoint);
-}
-
-void Server::send_scene_part(Player& p, uint32_t offset) {
+void Server::send_scene_part(Session& s, uint32_t offset) {
   if (offset >= scene_file_.size()) {
     counters_.drops.add(protocol::DropReason::kUnexpected);
     return;
   }
   const uint32_t n = std::min<uint32_t>(protocol::kScenePartBytes, static_cast<uint32_t>(scene_file_.size()) - offset);
-  auto& fbb = writer_.begin();
+  auto& writer = sessions_.writer();
+  auto& fbb = writer.begin();
   const auto data = fbb.CreateVector(reinterpret_cast<const uint8_t*>(scene_file_.data()) + offset, n);
-  send_sealed(p, writer_.finish(wire::CreateScenePart(fbb, scene_hash_, static_cast<uint32_t>(scene_file_.size()),
+  sessions_.send_sealed(s, writer.finish(wire::CreateScenePart(fbb, scene_hash_, static_cast<uint32_t>(scene_file_.size()),
                                                       offset, data)));
   ++counters_.scene_parts_sent;
 }
 
-void Server::send_sealed(Player& p, std::span<const uint8_t> inner) {
-  send(p.sealer.seal(seal_writer_, inner), p.endpoint);
-}
-
-void Server::send_stats(Player& p) {
+void Server::send_stats(Session& s) {
   const TickRecord mean = stats_.mean();
-  auto& fbb = writer_.begin();
+  auto& writer = sessions_.writer();
+  auto& fbb = writer.begin();
   wire::ServerStatsBuilder b(fbb);
   b.add_tick(tick_);
   b.add_players(static_cast<uint32_t>(num_players()));
@@ -662,13 +458,14 @@ void Server::send_stats(Player& p) {
   b.add_packets_in(counters_.packets_in);
   b.add_packets_dropped(counters_.drops.total());
   b.add_avatar_contacts(counters_.avatar_contacts);
-  send_sealed(p, writer_.finish(b.Finish()));
+  sessions_.send_sealed(s, writer.finish(b.Finish()));
 }
 
-void Server::send_tree(Player& p) {
+void Server::send_tree(Session& s) {
   // Only ever the requester's own tree: the session named in the request is the player's.
-  if (!p.avatar) return;  // a terrain avatar has none
-  send_sealed(p, tree_summary_.write(writer_, p.avatar->tree(), tick_, p.avatar_id));
+  const GraphAvatar* g = graph_avatar(s.avatar_id);
+  if (g == nullptr) return;  // a terrain avatar has none
+  sessions_.send_sealed(s, tree_summary_.write(sessions_.writer(), g->avatar->tree(), tick_, s.avatar_id));
 }
 
 void Server::send_snapshots(Clock::time_point now) {
@@ -680,33 +477,28 @@ void Server::send_snapshots(Clock::time_point now) {
   snapshot_terrain_.clear();
   terrain_before_.clear();
   snapshot_positions_.clear();
-  // In id order: a client's view (increasing indices into these arrays) is then sorted by id, as
-  // the packed avatars want it.
-  by_id_.resize(players_.size());
-  for (size_t i = 0; i < players_.size(); ++i) by_id_[i] = static_cast<uint32_t>(i);
-  std::sort(by_id_.begin(), by_id_.end(),
-            [this](uint32_t a, uint32_t b) { return players_[a]->avatar_id < players_[b]->avatar_id; });
-  for (uint32_t index : by_id_) {
-    const auto& p = players_[index];
+  // In id order (the roster's): a client's view (increasing indices into these arrays) is then
+  // sorted by id, as the packed avatars want it.
+  for (const RosterEntry& e : roster_.entries()) {
     terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
-    snapshot_positions_.push_back(p->terrain ? terrain::terrain_avatar_ground(*p->terrain) : p->avatar->root().pos_m);
-    if (p->terrain) {
-      collect_terrain_body(*p);
+    if (e.kind == AvatarKind::kTerrain) {
+      const TerrainWalker& w = *terrain_walkers_.get(e.avatar);
+      snapshot_positions_.push_back(terrain::terrain_avatar_ground(*w.avatar));
+      collect_terrain_body(w);
       continue;
     }
-    const PlaybackState& s = p->avatar->playback();
-    wire::AvatarState a(p->avatar_id, protocol::quantize_mm(s.segment_start.pos_m.x),
-                        protocol::quantize_mm(s.segment_start.pos_m.y), s.incoming_transition,
-                        static_cast<uint16_t>(s.segment), protocol::quantize_angle(s.segment_start.heading_rad),
-                        static_cast<uint8_t>(std::clamp(s.frame, 0, 255)),
-                        static_cast<uint8_t>(
-                            (p->avatar->tree().node(p->avatar->tree().root()).first_child < 0 ? protocol::kAvatarFallback
-                                                                                              : protocol::kAvatarNone) |
-                            (p->is_fighter() ? protocol::kAvatarNpc : protocol::kAvatarNone) |
-                            (p->is_fighter() && p->fighter->motion.striking() ? protocol::kAvatarStriking
-                                                                              : protocol::kAvatarNone)),
-                        0);
-    snapshot_states_.push_back(a);
+    const GraphAvatar& g = *graph_avatars_.get(e.avatar);
+    snapshot_positions_.push_back(g.avatar->root().pos_m);
+    const PlaybackState& s = g.avatar->playback();
+    const bool fallback = g.avatar->tree().node(g.avatar->tree().root()).first_child < 0;
+    snapshot_states_.emplace_back(
+        g.id, protocol::quantize_mm(s.segment_start.pos_m.x), protocol::quantize_mm(s.segment_start.pos_m.y),
+        s.incoming_transition, static_cast<uint16_t>(s.segment), protocol::quantize_angle(s.segment_start.heading_rad),
+        static_cast<uint8_t>(std::clamp(s.frame, 0, 255)),
+        static_cast<uint8_t>((fallback ? protocol::kAvatarFallback : protocol::kAvatarNone) |
+                             (g.npc ? protocol::kAvatarNpc : protocol::kAvatarNone) |
+                             (g.striking ? protocol::kAvatarStriking : protocol::kAvatarNone)),
+        0);
   }
   terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
   snapshot_archive_.start(snapshot_tick_, static_cast<uint32_t>(tick_)).avatars.assign(snapshot_states_.begin(),
@@ -731,19 +523,16 @@ void Server::send_snapshots(Clock::time_point now) {
   frame.far_every = config_.far_every;
   frame.archive = &snapshot_archive_;
   snapshot_receivers_.clear();
-  for (size_t index = 0; index < by_id_.size(); ++index) {
-    Player& p = *players_[by_id_[index]];
-    if (p.is_fighter()) continue;
-    snapshot_receivers_.push_back({static_cast<uint32_t>(index), p.avatar_id, p.last_input_seq, p.echo_client_time_ms,
-                                   &p.endpoint, &p.sealer, &p.sent_views});
-  }
+  for (Session& s : sessions_.sessions())
+    snapshot_receivers_.push_back({static_cast<uint32_t>(roster_.index_of(s.avatar_id)), s.avatar_id, s.last_input_seq,
+                                   s.echo_client_time_ms, &s.endpoint, &s.sealer, &s.sent_views});
   // Clients in parallel on the look-ahead workers, each worker with its own builder and batch.
   workers_->run(static_cast<int>(snapshot_receivers_.size()), [this, &frame](int item, int worker) {
     snapshot_builders_[static_cast<size_t>(worker)]->serve(frame, snapshot_receivers_[static_cast<size_t>(item)],
-                                                           socket_);
+                                                           sessions_.socket());
   });
   for (auto& builder : snapshot_builders_) {
-    builder->flush(socket_);
+    builder->flush(sessions_.socket());
     const SnapshotBuilder::Counts c = builder->take_counts();
     counters_.avatars_sent += c.avatars_sent;
     counters_.avatars_referenced += c.avatars_referenced;
@@ -755,30 +544,6 @@ void Server::send_snapshots(Clock::time_point now) {
 
 // ---------------------------------------------------------------------------------------------
 // Simulation
-
-void Server::expire(Clock::time_point now) {
-  const auto timeout = std::chrono::duration<double>(config_.session_timeout_s);
-  for (size_t i = players_.size(); i-- > 0;) {
-    if (!players_[i]->is_fighter() && now - players_[i]->last_heard > timeout) {
-      std::fprintf(stderr, "foresight-server: player %u timed out\n", players_[i]->avatar_id);
-      ++counters_.sessions_timed_out;
-      remove_player(i);
-    }
-  }
-}
-
-void Server::remove_player(size_t index) {
-  std::fprintf(stderr, "foresight-server: player %u left (%d players)\n", players_[index]->avatar_id,
-               num_players() - 1);
-  by_endpoint_.erase(endpoint_key(players_[index]->endpoint));
-  // Swap with the last: O(1), and the order of the others (which decides who commits first in a
-  // tick) stays deterministic.
-  std::swap(players_[index], players_.back());
-  // Freeing a tree returns about 0.6 MB to the system (~0.2 ms): a crowd leaving at once would
-  // stall the tick, so the memory is released a few players per tick (end of run_tick).
-  retired_.push_back(std::move(players_.back()));
-  players_.pop_back();
-}
 
 std::vector<Placement> Server::free_places_around(std::span<const Placement> around, size_t max_places) const {
   // Rings 0.25 m apart up to 8 m out, points 0.25 m apart along each ring, the rings of all the
@@ -855,24 +620,22 @@ bool Server::plan_spawn_places(std::string& error) {
 void Server::advance(TickRecord& record) {
   // Reservations: every avatar's committed motion as it stands now.
   reservations_.clear();
-  for (const auto& p : players_) {
-    if (!p->avatar) continue;
-    const PlaybackState& s = p->avatar->playback();
-    reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, s.frame, s.segment_start);
+  for (const GraphAvatar& g : graph_avatars_.items()) {
+    const PlaybackState& s = g.avatar->playback();
+    reservations_.add(static_cast<int>(g.id), library_, s.segment, s.frame, s.segment_start);
   }
   const double fps = library_.clips.empty() ? 30.0 : library_.clips.front().fps;
   const int64_t due = frames_due(tick_, fps, config_.tick_hz) - frames_due(tick_ - 1, fps, config_.tick_hz);
-  for (const auto& p : players_) {
-    for (int64_t f = 0; f < due && p->avatar; ++f) {
-      const ReservationVeto veto(reservations_, library_, static_cast<int>(p->avatar_id),
-                                 p->avatar->fallback_segment());
-      const AvatarStepResult r = p->avatar->step(&veto);
+  for (GraphAvatar& g : graph_avatars_.items()) {
+    for (int64_t f = 0; f < due; ++f) {
+      const ReservationVeto veto(reservations_, library_, static_cast<int>(g.id), g.avatar->fallback_segment());
+      const AvatarStepResult r = g.avatar->step(&veto);
       if (r.fallback) ++counters_.fallbacks;
       if (r.steered) ++counters_.steered_frames;
       if (r.recovery) ++counters_.recoveries;
       if (r.segment_changed || r.steered) {  // committed: reserve it now for the players deciding after
-        const PlaybackState& s = p->avatar->playback();
-        reservations_.add(static_cast<int>(p->avatar_id), library_, s.segment, s.frame, s.segment_start);
+        const PlaybackState& s = g.avatar->playback();
+        reservations_.add(static_cast<int>(g.id), library_, s.segment, s.frame, s.segment_start);
       }
     }
   }
@@ -880,97 +643,15 @@ void Server::advance(TickRecord& record) {
   advance_terrain(record);
 }
 
-void Server::grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record) {
-  tree_players_.clear();
-  for (const auto& p : players_)
-    if (p->avatar) tree_players_.push_back(p.get());
-  const size_t n = tree_players_.size();
-  if (n == 0) {
-    record.tree_size_min = -1;  // no players: not part of the tree figures
-    return;
-  }
-  const double period_ms = 1000.0 / config_.tick_hz;
-  // What the tick leaves: the period minus what was spent so far, what the rest of the tick
-  // (advance, snapshots) took lately, and the safety margin; capped.
-  const double budget_ms = std::clamp(
-      period_ms - ms_between(tick_start, now) - tail_ms_estimate_ - config_.tick_safety_margin_ms, 0.0,
-      config_.lookahead_budget_ms);
-  record.budget_ms = static_cast<float>(budget_ms);
-  // Shared by need: a thin tree or a decision coming soon asks for more.
-  grow_weight_.resize(n);
-  grow_expansions_.assign(n, 0);
-  double total = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const LookaheadAvatar& a = *tree_players_[i]->avatar;
-    const int left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
-    const double thin = std::clamp(1.0 - a.tree().num_nodes() / 64.0, 0.0, 1.0);
-    const double soon = std::clamp(1.0 - left / 15.0, 0.0, 1.0);
-    grow_weight_[i] = 1.0 + 2.0 * thin + soon;
-    total += grow_weight_[i];
-  }
-  const int workers = workers_->threads();
-  // Each worker spends up to budget_ms in parallel: its avatars' shares add up to its time.
-  const double per_weight_ms = budget_ms * workers / total;
-  const Clock::time_point end = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
-  // Two pointers captured: the job fits std::function's inline storage (no allocation per tick).
-  const struct {
-    double per_weight_ms;
-    Clock::time_point end;
-  } phase{per_weight_ms, end};
-  workers_->run(static_cast<int>(n), [this, &phase](int item, int) {
-    Player& p = *tree_players_[static_cast<size_t>(item)];
-    LookaheadAvatar& a = *p.avatar;
-    GrowBudget budget;
-    const bool timed = config_.expansions_per_avatar <= 0;
-    if (timed) {
-      double slice_ms = phase.per_weight_ms * grow_weight_[static_cast<size_t>(item)];
-      if (config_.lookahead_avatar_max_ms > 0) slice_ms = std::min(slice_ms, config_.lookahead_avatar_max_ms);
-      const auto slice = std::chrono::duration<double, std::milli>(slice_ms);
-      budget = GrowBudget::until(std::min(phase.end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
-    } else {
-      budget = GrowBudget::expansions(config_.expansions_per_avatar);
-    }
-    // Command matching measures v_k from where the avatar stands and strategies 1 and 4 re-sort
-    // the leaves (about 25 ns a node): at once when the command changes, just before a decision,
-    // and otherwise every resort_interval_ticks (1 = every tick, as the lab's replay does every
-    // frame). On the look-ahead threads, never per packet. The periodic re-sort is the first
-    // thing dropped when the tick runs late.
-    const int frames_left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() -
-                            a.playback().frame;
-    const bool periodic =
-        (tick_ + p.avatar_id) % config_.resort_interval_ticks == 0 && (!timed || Clock::now() < phase.end);
-    if (p.input_changed || frames_left <= 1 || periodic) {
-      a.set_input(p.input);
-      p.input_changed = false;
-    }
-    grow_expansions_[static_cast<size_t>(item)] = a.grow(budget).expansions;
-  });
-  record.lookahead_ms = static_cast<float>(ms_between(now, Clock::now()));
-  int64_t expansions = 0;
-  int64_t nodes = 0;
-  int min_nodes = INT32_MAX;
-  for (size_t i = 0; i < n; ++i) {
-    expansions += grow_expansions_[i];
-    const int size = tree_players_[i]->avatar->tree().num_nodes();
-    nodes += size;
-    min_nodes = std::min(min_nodes, size);
-  }
-  record.expansions = expansions;
-  record.tree_size_mean = static_cast<float>(static_cast<double>(nodes) / static_cast<double>(n));
-  record.tree_size_min = min_nodes;
-}
-
 void Server::check_contacts() {
   // Independent of the reservations and the terrain veto: do two avatars' bodies (this frame's
   // volumes; a terrain body's pelvis circle) overlap?
   contact_bodies_.clear();
-  for (const auto& p : players_) {
-    if (p->terrain) {
-      contact_bodies_.push_back({terrain::terrain_avatar_ground(*p->terrain), terrain::kTerrainBodyRadius_m});
-    } else {
-      const PlaybackState& s = p->avatar->playback();
-      contact_bodies_.push_back(place(library_.volumes(s.segment)[static_cast<size_t>(s.frame)], s.segment_start));
-    }
+  for (const TerrainWalker& w : terrain_walkers_.items())
+    contact_bodies_.push_back({terrain::terrain_avatar_ground(*w.avatar), terrain::kTerrainBodyRadius_m});
+  for (const GraphAvatar& g : graph_avatars_.items()) {
+    const PlaybackState& s = g.avatar->playback();
+    contact_bodies_.push_back(place(library_.volumes(s.segment)[static_cast<size_t>(s.frame)], s.segment_start));
   }
   if (any_footprints_overlap(contact_bodies_)) ++counters_.avatar_contacts;
 }

@@ -1,37 +1,41 @@
 #pragma once
-// The authoritative server (docs/SERVER.md). One UDP socket, a fixed tick:
+// The authoritative server (docs/SERVER.md). One UDP socket, a fixed tick. run_tick() is the
+// pipeline, read top to bottom in server.cpp; each stage loops over its own data:
 //
-//   receive   drain the socket: handshakes, inputs, heartbeats, stats and tree requests; every
-//             datagram verified first, bad ones dropped and counted by reason
-//   expire    drop sessions silent for session_timeout_s (their avatars go with them)
-//   advance   play each avatar's clip frames due this tick; at a segment end it takes its tree's
-//             best child that keeps clear of the other avatars' committed motion (reservations).
-//             Terrain avatars (Locomotion::kTerrain) play one frame and plan their next step
-//             where one ends (server_terrain.cpp)
-//   look      grow every avatar's feasible motion tree within the tick's look-ahead budget,
-//             shared by need, on `threads` cores
-//   send      snapshots at snapshot_hz
+//   1 receive    the session table drains the socket: handshakes, sealed session messages (a
+//                player's held command, heartbeats, stats, tree and scene requests), bad datagrams
+//                dropped and counted by reason; queued joins get an avatar; silent sessions end
+//   2 commands   the supervisor's and the admin endpoint's commands queued since the last tick
+//   3 think      NPC fighters perceive the nearest player and set their command
+//   4 look       every motion-graph avatar's feasible motion tree grows within what the tick
+//                leaves, shared by need, on `threads` cores (lookahead_scheduler.hpp)
+//   5 advance    each avatar plays the clip frames due; at a segment end it takes its tree's best
+//                child that keeps clear of the others' committed motion (reservations); fighters
+//                play their strikes; terrain avatars play a frame and plan a step where one ends
+//   6 send       at snapshot_hz: the avatars in id order gathered once, then each client's view
+//                built, delta-coded, sealed and sent on the workers (snapshot_builder.hpp); the
+//                contact check
+//   7 finish     tick figures, the overrun line, trees of departed avatars released a few a tick,
+//                the admin endpoint's figures, the status line
 //
-// run_tick() does one tick and is what tests call (with a fake clock they stay deterministic in
-// expansion-budget mode); run() loops it at tick_hz until stop() is called.
-#include "lookahead/lookahead_avatar.hpp"
-#include "lookahead/reservations.hpp"
-#include "terrain/terrain_avatar.hpp"
+// Avatars live in one table per kind (avatars.hpp) addressed by generation-counted handles;
+// sessions in the session table (session_table.hpp). run() loops run_tick at tick_hz until
+// stop(); tests call run_tick with their own clock (deterministic in expansion-budget mode).
 #include "admin_commands.hpp"
-#include "agones_sdk.hpp"
 #include "admin_http.hpp"
+#include "agones_sdk.hpp"
+#include "avatars.hpp"
+#include "clock.hpp"
 #include "fighters/fighter_assets.hpp"
-#include "fighters/fighter_npc.hpp"
 #include "interest.hpp"
+#include "lookahead/reservations.hpp"
+#include "lookahead_scheduler.hpp"
 #include "lookahead_workers.hpp"
-#include "protocol/avatar_delta.hpp"
 #include "protocol/sent_views.hpp"
-#include "snapshot_builder.hpp"
-#include "transport/cookie.hpp"
-#include "protocol/packet.hpp"
-#include "transport/session_crypto.hpp"
-#include "transport/udp_socket.hpp"
 #include "server_config.hpp"
+#include "server_counters.hpp"
+#include "session_table.hpp"
+#include "snapshot_builder.hpp"
 #include "tick_stats.hpp"
 #include "tree_summary.hpp"
 #include "world/body_volume.hpp"
@@ -50,47 +54,13 @@
 
 namespace foresight::server {
 
-using Clock = std::chrono::steady_clock;
-
-/// Counters an operator (and the tests) read.
-struct ServerCounters {
-  uint64_t packets_in = 0;
-  uint64_t bytes_in = 0;
-  uint64_t packets_out = 0;
-  uint64_t bytes_out = 0;
-  uint64_t send_failures = 0;
-  uint64_t challenges_sent = 0;
-  uint64_t challenges_capped = 0;   ///< Connect requests ignored: over max_challenges_per_tick.
-  uint64_t sessions_opened = 0;
-  uint64_t joins_deferred = 0;      ///< Verified joins that had to queue (max_joins_per_tick).
-  uint64_t sessions_timed_out = 0;
-  uint64_t sessions_closed = 0;     ///< Clean disconnects.
-  uint64_t refused = 0;             ///< Refuse messages sent (library, version, full, cookie).
-  uint64_t spawn_refusals = 0;      ///< Of those, joins with no free place near the spawns.
-  uint64_t scene_parts_sent = 0;    ///< ScenePart answers to clients fetching the scene file.
-  uint64_t avatar_contacts = 0;     ///< Ticks with two avatars' bodies overlapping (must stay 0).
-  uint64_t fallbacks = 0;
-  uint64_t steered_frames = 0;      ///< Frames steering mode turned an avatar's playing motion.
-  uint64_t recoveries = 0;          ///< Times steering mode found an avatar wedged and backed it off.
-  uint64_t fighter_strikes = 0;     ///< Strikes judged.
-  uint64_t fighter_hits = 0;
-  uint64_t fighter_strike_failures = 0;  ///< Decided but not startable (logged).
-  uint64_t fighter_route_failures = 0;   ///< No route around the walls to a fighter's target.
-  uint64_t terrain_steps = 0;     ///< Steps terrain avatars committed.
-  uint64_t terrain_pivots = 0;    ///< Turns on the spot.
-  uint64_t terrain_refusals = 0;  ///< Plans that failed or were vetoed (the avatar stood).
-  uint64_t avatars_sent = 0;        ///< Avatar states in snapshots, over all clients.
-  uint64_t avatars_referenced = 0;  ///< Of those, delta-coded against an acknowledged snapshot.
-  protocol::DropCounters drops;
-};
-
-class Server {
+class Server : private SessionEvents {
  public:
   Server();
   ~Server();
   /// Loads the scene and the motion library, binds the socket. False with a reason.
   bool start(const ServerConfig& config, std::string& error);
-  uint16_t port() const { return socket_.local_port(); }
+  uint16_t port() const { return sessions_.port(); }
 
   /// One tick at time `now`.
   void run_tick(Clock::time_point now);
@@ -108,8 +78,8 @@ class Server {
   const Scene& scene() const { return scene_; }
   const ServerCounters& counters() const { return counters_; }
   const TickStats& tick_stats() const { return stats_; }
-  int num_players() const;
   uint32_t tick() const { return tick_; }
+  int num_players() const { return static_cast<int>(sessions_.size()); }
 
   /// A player's avatar, for tests and tools (nullptr if none with that id, or a terrain avatar).
   const LookaheadAvatar* avatar(uint32_t avatar_id) const;
@@ -144,51 +114,44 @@ class Server {
   static constexpr size_t kStrikeEventsKept = 64;
 
  private:
-  struct Player;
-  struct PendingJoin {
-    protocol::Endpoint endpoint;
-    uint64_t key = 0;
-    std::string name;
-    protocol::SessionKey client_key{};
-  };
-
-  void receive(Clock::time_point now);
-  void handle(const protocol::Endpoint& from, const wire::Packet& packet, size_t bytes,
-              Clock::time_point now);
-  void on_connect_request(const protocol::Endpoint& from, const wire::ConnectRequest& m, size_t bytes,
-                          Clock::time_point now);
-  void on_connect_response(const protocol::Endpoint& from, const wire::ConnectResponse& m,
-                           Clock::time_point now);
-  void on_input(Player& p, const wire::Input& m);
-  void admit_joins(Clock::time_point now);
-  void admit(const PendingJoin& join, Clock::time_point now);
-  void send_refuse(const protocol::Endpoint& to, wire::RefuseReason reason, const std::string& message);
-  void send_accept(const Player& p);
-  void send_stats(Player& p);
-  /// Sends `inner` (a whole packet) to a player inside its session's Sealed wrapping.
-  void send_sealed(Player& p, std::span<const uint8_t> inner);
-  void handle_session(Player& p, const wire::Packet& packet, Clock::time_point now);
-  void send_tree(Player& p);
-  void send_scene_part(Player& p, uint32_t offset);  ///< One ScenePart from `offset` (SceneRequest).
-  void expire(Clock::time_point now);
-  void remove_player(size_t index);
+  // Stages of run_tick (server.cpp), in order.
+  void run_admin_commands();
+  void think_fighters();                      // server_fighters.cpp
   void advance(TickRecord& record);
-  void grow_trees(Clock::time_point tick_start, Clock::time_point now, TickRecord& record);
+  void animate_fighters(int64_t frames_due);  // server_fighters.cpp
+  void advance_terrain(TickRecord& record);   // server_terrain.cpp
   void send_snapshots(Clock::time_point now);
   void check_contacts();
+  void finish_tick(TickRecord& record, const StageTimer& timer);
+
+  // What a session's join, messages and end mean in the game (SessionEvents).
+  bool on_join(Session& s, Clock::time_point now, wire::RefuseReason& reason, std::string& why) override;
+  void on_message(Session& s, const wire::Packet& message) override;
+  void on_leave(const Session& s) override;
+  void on_input(Session& s, const wire::Input& m);
+  void send_stats(Session& s);
+  void send_tree(Session& s);
+  void send_scene_part(Session& s, uint32_t offset);  ///< One ScenePart from `offset` (SceneRequest).
+
+  /// The avatar with this id by kind, or nullptr (a binary search of the roster).
+  GraphAvatar* graph_avatar(uint32_t id);
+  const GraphAvatar* graph_avatar(uint32_t id) const;
+  /// The fighter whose body has this id, or nullptr.
+  Fighter* fighter(uint32_t id);
+  const Fighter* fighter(uint32_t id) const;
+  /// A player's (not a fighter's) motion-graph avatar, or nullptr.
+  const GraphAvatar* player_avatar(uint32_t id) const;
+
   // NPC fighters (server_fighters.cpp).
   bool spawn_fighters(std::string& error);
-  void think_fighters(Clock::time_point now);
   /// Where fighter `npc` at `from` should walk to reach `to` (the target, or a route corner).
   vec2 fighter_way(FighterNpc& npc, vec2 from, vec2 to, double now_s);
-  void animate_fighters(int64_t frames_due);
   void collect_fighter_poses();
-  void judge_strike(Player& fighter, const StrikeFrame& frame);
+  void judge_strike(const Fighter& fighter, const StrikeFrame& frame);
   vec3 head_position(const LookaheadAvatar& avatar);
   // Terrain avatars (server_terrain.cpp).
   bool terrain_place_free(const Placement& place) const;
-  void advance_terrain(TickRecord& record);
-  void collect_terrain_body(const Player& p);
+  void collect_terrain_body(const TerrainWalker& walker);
   MemoryFigures memory_figures() const;
   void log_status() const;
   void publish_admin(Clock::time_point now);
@@ -200,9 +163,8 @@ class Server {
   bool plan_spawn_places(std::string& error);          ///< spawn_places_, warnings for spawns that do not fit.
   bool find_spawn(Placement& out) const;               ///< The first of spawn_places_ free now.
   bool find_free_place(std::span<const Placement> around, Placement& out) const;
-  Player* find_player(const protocol::Endpoint& from);
-  void send(std::span<const uint8_t> bytes, const protocol::Endpoint& to);
 
+  ServerCounters counters_;  ///< First: the session table counts into it.
   ServerConfig config_;
   MotionLibrary library_;
   Scene scene_;
@@ -222,18 +184,18 @@ class Server {
   std::vector<vec3> head_global_pos_;
   std::vector<quat> head_global_rot_;
 
-  protocol::UdpSocket socket_;
-  protocol::CookieJar cookies_;
-  protocol::PacketWriter writer_;
-  protocol::PacketWriter seal_writer_;  ///< The Sealed wrapping around what writer_ holds.
-  std::vector<uint8_t> receive_buffer_;
-  std::vector<std::unique_ptr<Player>> players_;
-  std::unordered_map<uint64_t, Player*> by_endpoint_;  ///< endpoint_key -> player
-  std::vector<std::unique_ptr<Player>> retired_;        ///< Removed, memory not yet released.
-  /// Cookie-verified joins waiting their turn (at most max_players - players long).
-  std::deque<PendingJoin> join_queue_;
-  Reservations reservations_;
+  SessionTable sessions_{counters_};
   std::unique_ptr<LookaheadWorkers> workers_;
+  std::unique_ptr<LookaheadScheduler> scheduler_;
+  // The avatars: one table per kind, and all of them in id order.
+  HandleTable<GraphAvatar> graph_avatars_;
+  HandleTable<TerrainWalker> terrain_walkers_;
+  HandleTable<Fighter> fighters_;
+  Roster roster_;
+  /// Trees of avatars that left: freeing one returns about 0.6 MB to the system (~0.2 ms), so a
+  /// crowd leaving at once would stall the tick; finish_tick releases a few a tick.
+  std::vector<std::unique_ptr<LookaheadAvatar>> retired_;
+  Reservations reservations_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
   // Fighters' poses and strike events for the snapshot being sent (server_fighters.cpp); reused.
   std::vector<FighterPoseOut> fighter_poses_;
@@ -243,7 +205,6 @@ class Server {
   std::vector<uint32_t> terrain_before_;             ///< Per snapshot avatar (and one past): bodies before it.
   std::vector<vec2> snapshot_positions_;             ///< Per snapshot avatar: where it stands (interest).
   InterestGrid interest_grid_;
-  std::vector<uint32_t> by_id_;                      ///< players_ indices by avatar id (snapshot order).
   std::vector<BodyVolume> contact_bodies_;           ///< check_contacts: this frame's bodies (reused).
   /// The avatars of the last 64 snapshots, once for every client (sent_views.hpp).
   protocol::SnapshotArchive snapshot_archive_;
@@ -252,15 +213,10 @@ class Server {
   bool terrain_mode_ = false;
   terrain::TerrainAvatarConfig terrain_config_;
   std::vector<terrain::TerrainNeighbour> terrain_neighbours_;  ///< Reused per planning avatar.
-  std::vector<Player*> tree_players_;                ///< Players with a motion tree, this tick.
   TreeSummaryWriter tree_summary_;                  ///< Reused for every TreeRequest.
-  std::vector<double> grow_weight_;                 ///< Per player, reused.
-  std::vector<int64_t> grow_expansions_;            ///< Per player, this tick.
-  std::vector<Clock::time_point> grow_deadline_;    ///< Per worker.
 
   Clock::time_point started_{};
   uint32_t tick_ = 0;
-  uint32_t next_session_ = 1;
   uint32_t next_avatar_ = 1;
   int num_fighters_ = 0;
   std::unique_ptr<FighterAssets> fighter_assets_;
@@ -276,10 +232,7 @@ class Server {
   uint32_t next_strike_event_ = 1;
   double snapshot_accumulator_ = 0;
   uint32_t snapshot_tick_ = 0;
-  int challenges_this_tick_ = 0;
-  double tail_ms_estimate_ = 0;
-  uint32_t next_overrun_log_tick_ = 0;  ///< Recent advance + send time (EMA), kept out of the budget.
-  ServerCounters counters_;
+  uint32_t next_overrun_log_tick_ = 0;
   TickStats stats_;
   std::atomic<bool> stop_requested_{false};
 };

@@ -6,8 +6,6 @@
 #include "fighter/fighter_rig.hpp"
 #include "fighter/morphology.hpp"
 #include "lookahead/scene_path.hpp"
-#include "lookahead/scene_path.hpp"
-#include "player.hpp"
 #include "protocol/quantize.hpp"
 
 #include <algorithm>
@@ -61,54 +59,50 @@ bool Server::spawn_fighters(std::string& error) {
       std::fprintf(stderr, "foresight-server: no free place for fighter '%s': not spawned\n", name.c_str());
       continue;
     }
-    auto p = std::make_unique<Player>();
-    p->avatar_id = next_avatar_++;
-    p->name = name;
+    const uint32_t id = next_avatar_++;
     // Fighters walk with the paper's controller: their strikes are planned from where the clips
     // take them, and steering's turns put the target off by more than a fist (reach error 9.8 cm
     // against under 5 cm in Fighter.StrikesWithTheMocapStrikesInTheDatabase).
     MotionTreeConfig fighter_tree = tree_config_;
     fighter_tree.steer_rad_per_s = 0.0f;
-    p->avatar = std::make_unique<LookaheadAvatar>(library_, world_, fighter_tree, spawn_segment_, at);
+    GraphAvatar body;
+    body.id = id;
+    body.npc = true;
+    body.avatar = std::make_unique<LookaheadAvatar>(library_, world_, fighter_tree, spawn_segment_, at);
     const int morphology = config_.fighter_morphology >= 0 ? config_.fighter_morphology % kNumMorphologies
                                                            : i % kNumMorphologies;
-    p->fighter = std::make_unique<FighterNpc>(brain, morphology, name);
-    p->fighter->motion.init(*fighter_assets_, p->fighter->morphology);
-    p->fighter->motion.pose_locomotion(library_, p->avatar->playback());
-    reservations_.add(static_cast<int>(p->avatar_id), library_, spawn_segment_, 0, at);
-    std::fprintf(stderr, "foresight-server: fighter %u '%s' (%s) at (%.1f, %.1f)\n", p->avatar_id, name.c_str(),
-                 morphology_specs()[static_cast<size_t>(p->fighter->morphology)].name, at.pos_m.x, at.pos_m.y);
-    players_.push_back(std::move(p));
+    auto npc = std::make_unique<FighterNpc>(brain, morphology, name);
+    npc->motion.init(*fighter_assets_, npc->morphology);
+    npc->motion.pose_locomotion(library_, body.avatar->playback());
+    const Handle body_handle = graph_avatars_.add(std::move(body));
+    graph_avatars_.get(body_handle)->fighter = fighters_.add({id, body_handle, std::move(npc)});
+    roster_.add({id, AvatarKind::kGraph, body_handle});
+    reservations_.add(static_cast<int>(id), library_, spawn_segment_, 0, at);
+    std::fprintf(stderr, "foresight-server: fighter %u '%s' (%s) at (%.1f, %.1f)\n", id, name.c_str(),
+                 morphology_specs()[static_cast<size_t>(morphology)].name, at.pos_m.x, at.pos_m.y);
     ++num_fighters_;
   }
   return true;
 }
 
 const PoseBuffers* Server::fighter_pose(uint32_t avatar_id) const {
-  for (const auto& f : players_)
-    if (f->is_fighter() && f->avatar_id == avatar_id) return &f->fighter->motion.pose();
-  return nullptr;
+  const Fighter* f = fighter(avatar_id);
+  return f != nullptr ? &f->npc->motion.pose() : nullptr;
 }
 
 bool Server::order_fighter(uint32_t avatar_id, StrikeOrder order) {
-  for (const auto& f : players_) {
-    if (!f->is_fighter() || f->avatar_id != avatar_id) continue;
-    // The target is its current one (the nearest player), its head stored now.
-    for (const auto& p : players_)
-      if (!p->is_fighter() && p->avatar_id == f->fighter->target_id) {
-        f->fighter->brain.order(order, static_cast<double>(tick_) / config_.tick_hz, p->avatar_id,
-                                head_position(*p->avatar));
-        return true;
-      }
-    return false;  // no target yet
-  }
-  return false;
+  Fighter* f = fighter(avatar_id);
+  if (f == nullptr) return false;
+  // The target is its current one (the nearest player), its head stored now.
+  const GraphAvatar* target = player_avatar(f->npc->target_id);
+  if (target == nullptr) return false;  // no target yet
+  f->npc->brain.order(order, static_cast<double>(tick_) / config_.tick_hz, target->id, head_position(*target->avatar));
+  return true;
 }
 
 std::vector<uint32_t> Server::fighter_ids() const {
   std::vector<uint32_t> ids;
-  for (const auto& p : players_)
-    if (p->is_fighter()) ids.push_back(p->avatar_id);
+  for (const Fighter& f : fighters_.items()) ids.push_back(f.id);
   return ids;
 }
 
@@ -121,32 +115,31 @@ vec3 Server::head_position(const LookaheadAvatar& avatar) {
   return head_global_pos_[static_cast<size_t>(head_joint_)];
 }
 
-void Server::think_fighters(Clock::time_point) {
-  if (num_fighters_ == 0) return;
+void Server::think_fighters() {
   const double now_s = static_cast<double>(tick_) / config_.tick_hz;
-  for (const auto& f : players_) {
-    if (!f->is_fighter()) continue;
-    FighterNpc& npc = *f->fighter;
-    const Placement self = f->avatar->root();
+  for (Fighter& f : fighters_.items()) {
+    FighterNpc& npc = *f.npc;
+    GraphAvatar& body = *graph_avatars_.get(f.body);
+    const Placement self = body.avatar->root();
     // The nearest player is the target (fighters do not fight each other).
-    const Player* target = nullptr;
+    const GraphAvatar* target = nullptr;
     float best = std::numeric_limits<float>::max();
-    for (const auto& p : players_) {
-      if (p->is_fighter()) continue;
-      const float d = glm::length(p->avatar->root().pos_m - self.pos_m);
+    for (const GraphAvatar& p : graph_avatars_.items()) {
+      if (p.npc) continue;
+      const float d = glm::length(p.avatar->root().pos_m - self.pos_m);
       if (d < best) {
         best = d;
-        target = p.get();
+        target = &p;
       }
     }
     FighterSenses senses;
     senses.now_s = now_s;
     senses.self_pos_m = self.pos_m;
-    const PlaybackState& s = f->avatar->playback();
+    const PlaybackState& s = body.avatar->playback();
     senses.can_strike = (library_.graph.segments[static_cast<size_t>(s.segment)].tags & kTagIdle) != 0;
     if (target != nullptr) {
       senses.has_target = true;
-      senses.target_id = target->avatar_id;
+      senses.target_id = target->id;
       senses.target_pos_m = target->avatar->root().pos_m;
       senses.way_m = fighter_way(npc, self.pos_m, senses.target_pos_m, now_s);
       senses.target_head_m = head_position(*target->avatar);
@@ -162,7 +155,7 @@ void Server::think_fighters(Clock::time_point) {
         npc.strike_target_head_m = d.target_head_m;
       } else {
         ++counters_.fighter_strike_failures;
-        std::fprintf(stderr, "foresight-server: fighter %u could not strike: %s\n", f->avatar_id, error.c_str());
+        std::fprintf(stderr, "foresight-server: fighter %u could not strike: %s\n", f.id, error.c_str());
         npc.brain.strike_finished(now_s);
       }
     }
@@ -170,9 +163,9 @@ void Server::think_fighters(Clock::time_point) {
     // (control_world_direction: yaw 0 puts forward at +Z and right at -X).
     ControlInput in;
     in.camera_dir = vec2(-d.move_world.x, d.move_world.y);
-    if (in.camera_dir != f->input.camera_dir || in.camera_yaw_rad != f->input.camera_yaw_rad) {
-      f->input = in;
-      f->input_changed = true;
+    if (in.camera_dir != body.input.camera_dir || in.camera_yaw_rad != body.input.camera_yaw_rad) {
+      body.input = in;
+      body.input_changed = true;
     }
   }
 }
@@ -200,17 +193,17 @@ vec2 Server::fighter_way(FighterNpc& npc, vec2 from, vec2 to, double now_s) {
 }
 
 void Server::animate_fighters(int64_t frames_due) {
-  if (num_fighters_ == 0) return;
   const double now_s = static_cast<double>(tick_) / config_.tick_hz;
-  for (const auto& f : players_) {
-    if (!f->is_fighter()) continue;
-    FighterMotion& motion = f->fighter->motion;
+  for (const Fighter& f : fighters_.items()) {
+    FighterMotion& motion = f.npc->motion;
+    GraphAvatar& body = *graph_avatars_.get(f.body);
     for (int64_t k = 0; k < frames_due && motion.striking(); ++k) {
       const StrikeFrame frame = motion.step_strike();
-      if (frame.hit_frame) judge_strike(*f, frame);
-      if (frame.finished) f->fighter->brain.strike_finished(now_s);
+      if (frame.hit_frame) judge_strike(f, frame);
+      if (frame.finished) f.npc->brain.strike_finished(now_s);
     }
-    if (!motion.striking()) motion.pose_locomotion(library_, f->avatar->playback());
+    if (!motion.striking()) motion.pose_locomotion(library_, body.avatar->playback());
+    body.striking = motion.striking();  // the snapshot's flag
   }
 }
 
@@ -218,13 +211,11 @@ void Server::collect_fighter_poses() {
   fighter_poses_.clear();
   fighter_rotations_.clear();
   snapshot_events_.clear();
-  if (num_fighters_ == 0) return;
-  for (const auto& f : players_) {
-    if (!f->is_fighter()) continue;
-    const PoseBuffers& pose = f->fighter->motion.pose();
+  for (const Fighter& f : fighters_.items()) {
+    const PoseBuffers& pose = f.npc->motion.pose();
     FighterPoseOut out;
-    out.avatar = f->avatar_id;
-    out.morphology = static_cast<uint8_t>(f->fighter->morphology);
+    out.avatar = f.id;
+    out.morphology = static_cast<uint8_t>(f.npc->morphology);
     for (int k = 0; k < 3; ++k) out.pelvis_mm[k] = protocol::quantize_mm(pose.local_pos_m[0][k]);
     out.first_rotation = fighter_rotations_.size();
     out.num_rotations = std::min(pose.local_rot.size(), protocol::kMaxFighterJoints);
@@ -240,19 +231,19 @@ void Server::collect_fighter_poses() {
   }
 }
 
-void Server::judge_strike(Player& f, const StrikeFrame& frame) {
+void Server::judge_strike(const Fighter& f, const StrikeFrame& frame) {
   const vec3 effector_m = frame.effector_m;
   StrikeEvent e;
   e.sequence = next_strike_event_++;
   e.tick = tick_;
-  e.fighter = f.avatar_id;
-  e.target = f.fighter->strike_target;
-  e.kick = f.fighter->strike_kind == StrikeOrder::kKick;
+  e.fighter = f.id;
+  e.target = f.npc->strike_target;
+  e.kick = f.npc->strike_kind == StrikeOrder::kKick;
   e.effector_m = effector_m;
   e.reach_error_m = frame.reach_error_m;
   e.miss_m = std::numeric_limits<float>::max();
-  for (const auto& p : players_)
-    if (!p->is_fighter() && p->avatar_id == e.target) e.miss_m = glm::length(head_position(*p->avatar) - effector_m);
+  if (const GraphAvatar* target = player_avatar(e.target))
+    e.miss_m = glm::length(head_position(*target->avatar) - effector_m);
   e.hit = e.miss_m <= config_.fighter_hit_radius_m;
   ++counters_.fighter_strikes;
   if (e.hit) ++counters_.fighter_hits;

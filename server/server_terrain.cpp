@@ -2,7 +2,8 @@
 // tick and, where its step ends, plans the next one toward its player's direction, keeping clear
 // of the other terrain avatars (their pelvis now and where their step ends). The time goes into
 // the tick's advance phase, so the look-ahead budget of the tree avatars (if any) shrinks by it.
-#include "player.hpp"
+#include "server.hpp"
+
 #include "protocol/protocol.hpp"
 #include "protocol/quantize.hpp"
 #include "world/terrain.hpp"
@@ -33,9 +34,8 @@ bool Server::terrain_place_free(const Placement& place) const {
   terrain::gather_upper_body_obstacles(scene_, std::span(&frame, 1), 1.0f, 0.0f, obstacles);
   if (obstacles.overflow || !terrain::upper_body_clear(terrain_config_.walker.upper_body.body, frame, body.upper, obstacles))
     return false;
-  for (const auto& p : players_) {
-    if (!p->terrain) continue;
-    for (vec2 other : {terrain::terrain_avatar_ground(*p->terrain), p->terrain->step_end_m})
+  for (const TerrainWalker& w : terrain_walkers_.items()) {
+    for (vec2 other : {terrain::terrain_avatar_ground(*w.avatar), w.avatar->step_end_m})
       if (glm::length(other - place.pos_m) < terrain_config_.personal_space_m + 0.3f) return false;
   }
   return true;
@@ -44,21 +44,20 @@ bool Server::terrain_place_free(const Placement& place) const {
 void Server::advance_terrain(TickRecord& record) {
   if (!terrain_mode_) return;
   const auto start = std::chrono::steady_clock::now();
-  for (const auto& p : players_) {
-    if (!p->terrain) continue;
-    terrain::TerrainAvatar& a = *p->terrain;
+  for (TerrainWalker& w : terrain_walkers_.items()) {
+    terrain::TerrainAvatar& a = *w.avatar;
     terrain_neighbours_.clear();
     if (terrain::terrain_avatar_may_plan(a)) {
       // Only those a step could reach (at most s_max per step, and their own step).
       const vec2 at = terrain::terrain_avatar_ground(a);
-      for (const auto& o : players_) {
-        if (!o->terrain || o.get() == p.get()) continue;
-        const terrain::TerrainNeighbour n{terrain::terrain_avatar_ground(*o->terrain), o->terrain->step_end_m};
+      for (const TerrainWalker& o : terrain_walkers_.items()) {
+        if (&o == &w) continue;
+        const terrain::TerrainNeighbour n{terrain::terrain_avatar_ground(*o.avatar), o.avatar->step_end_m};
         if (glm::length(n.now_m - at) < 3.0f) terrain_neighbours_.push_back(n);
       }
     }
     const int steps = a.steps, pivots = a.pivots, refusals = a.refusals;
-    const vec2 direction = control_input_valid(p->input) ? control_world_direction(p->input) : vec2(0.0f);
+    const vec2 direction = control_input_valid(w.input) ? control_world_direction(w.input) : vec2(0.0f);
     if (terrain::terrain_avatar_frame(a, scene_, direction, terrain_neighbours_)) ++record.terrain_plans;
     counters_.terrain_steps += static_cast<uint64_t>(a.steps - steps);
     counters_.terrain_pivots += static_cast<uint64_t>(a.pivots - pivots);
@@ -67,12 +66,12 @@ void Server::advance_terrain(TickRecord& record) {
   record.terrain_ms = static_cast<float>(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
-void Server::collect_terrain_body(const Player& p) {
-  const terrain::TerrainAvatar& a = *p.terrain;
+void Server::collect_terrain_body(const TerrainWalker& w) {
+  const terrain::TerrainAvatar& a = *w.avatar;
   const terrain::TerrainBodyPose& b = a.body;
   const uint16_t heading = protocol::quantize_angle(b.heading_rad);
   const bool standing_refused = !a.stepping && !a.pivoting && a.wait_frames > 0;
-  snapshot_states_.emplace_back(p.avatar_id, protocol::quantize_mm(b.pelvis_m.x), protocol::quantize_mm(b.pelvis_m.z), -1,
+  snapshot_states_.emplace_back(w.id, protocol::quantize_mm(b.pelvis_m.x), protocol::quantize_mm(b.pelvis_m.z), -1,
                                 protocol::kNoSegment, heading, 0,
                                 static_cast<uint8_t>(protocol::kAvatarTerrain |
                                                      (standing_refused ? protocol::kAvatarFallback : protocol::kAvatarNone)),
@@ -81,7 +80,7 @@ void Server::collect_terrain_body(const Player& p) {
   std::array<int16_t, terrain::kTerrainBodyAngles> q;
   for (size_t i = 0; i < q.size(); ++i) q[i] = quantize_terrain_angle(angles[i]);
   snapshot_terrain_.emplace_back(
-      p.avatar_id, protocol::quantize_mm(b.pelvis_m.x), protocol::quantize_mm(b.pelvis_m.y),
+      w.id, protocol::quantize_mm(b.pelvis_m.x), protocol::quantize_mm(b.pelvis_m.y),
       protocol::quantize_mm(b.pelvis_m.z), heading, static_cast<uint8_t>(a.last_status),
       static_cast<uint8_t>((a.stepping ? protocol::kTerrainWalking : 0) | (a.pivoting ? protocol::kTerrainPivoting : 0)),
       flatbuffers::span<const int16_t, terrain::kTerrainBodyAngles>(q));

@@ -1,0 +1,90 @@
+#include "lookahead_scheduler.hpp"
+
+#include <algorithm>
+#include <climits>
+
+namespace foresight::server {
+
+LookaheadScheduler::LookaheadScheduler(const ServerConfig& config, const MotionLibrary& library,
+                                       LookaheadWorkers& workers)
+    : config_(config), library_(library), workers_(workers) {}
+
+void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clock::time_point tick_start,
+                              TickRecord& record) {
+  const Clock::time_point now = Clock::now();
+  const size_t n = avatars.size();
+  if (n == 0) {
+    record.tree_size_min = -1;  // no avatars: not part of the tree figures
+    return;
+  }
+  const double period_ms = 1000.0 / config_.tick_hz;
+  const double budget_ms =
+      std::clamp(period_ms - ms_between(tick_start, now) - tail_ms_estimate_ - config_.tick_safety_margin_ms, 0.0,
+                 config_.lookahead_budget_ms);
+  record.budget_ms = static_cast<float>(budget_ms);
+  // Shared by need: a thin tree or a decision coming soon asks for more.
+  weight_.resize(n);
+  expansions_.assign(n, 0);
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const LookaheadAvatar& a = *avatars[i].avatar;
+    const int left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
+    const double thin = std::clamp(1.0 - a.tree().num_nodes() / 64.0, 0.0, 1.0);
+    const double soon = std::clamp(1.0 - left / 15.0, 0.0, 1.0);
+    weight_[i] = 1.0 + 2.0 * thin + soon;
+    total += weight_[i];
+  }
+  // Each worker spends up to budget_ms in parallel: its avatars' shares add up to its time.
+  const double per_weight_ms = budget_ms * workers_.threads() / total;
+  const Clock::time_point end =
+      now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
+  // Three words captured: the job fits std::function's inline storage (no allocation per tick).
+  const struct {
+    GraphAvatar* avatars;
+    double per_weight_ms;
+    Clock::time_point end;
+  } phase{avatars.data(), per_weight_ms, end};
+  workers_.run(static_cast<int>(n), [this, &phase, tick](int item, int) {
+    GraphAvatar& g = phase.avatars[item];
+    LookaheadAvatar& a = *g.avatar;
+    GrowBudget budget;
+    const bool timed = config_.expansions_per_avatar <= 0;
+    if (timed) {
+      double slice_ms = phase.per_weight_ms * weight_[static_cast<size_t>(item)];
+      if (config_.lookahead_avatar_max_ms > 0) slice_ms = std::min(slice_ms, config_.lookahead_avatar_max_ms);
+      const auto slice = std::chrono::duration<double, std::milli>(slice_ms);
+      budget = GrowBudget::until(std::min(phase.end, Clock::now() + std::chrono::duration_cast<Clock::duration>(slice)));
+    } else {
+      budget = GrowBudget::expansions(config_.expansions_per_avatar);
+    }
+    // Command matching measures v_k from where the avatar stands and strategies 1 and 4 re-sort
+    // the leaves (about 25 ns a node): at once when the command changes, just before a decision,
+    // and otherwise every resort_interval_ticks (1 = every tick, as the lab's replay does every
+    // frame). On the look-ahead threads, never per packet. The periodic re-sort is the first
+    // thing dropped when the tick runs late.
+    const int frames_left =
+        library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
+    const bool periodic =
+        (tick + g.id) % static_cast<uint32_t>(config_.resort_interval_ticks) == 0 && (!timed || Clock::now() < phase.end);
+    if (g.input_changed || frames_left <= 1 || periodic) {
+      a.set_input(g.input);
+      g.input_changed = false;
+    }
+    expansions_[static_cast<size_t>(item)] = a.grow(budget).expansions;
+  });
+  record.lookahead_ms = static_cast<float>(ms_between(now, Clock::now()));
+  int64_t expansions = 0;
+  int64_t nodes = 0;
+  int min_nodes = INT_MAX;
+  for (size_t i = 0; i < n; ++i) {
+    expansions += expansions_[i];
+    const int size = avatars[i].avatar->tree().num_nodes();
+    nodes += size;
+    min_nodes = std::min(min_nodes, size);
+  }
+  record.expansions = expansions;
+  record.tree_size_mean = static_cast<float>(static_cast<double>(nodes) / static_cast<double>(n));
+  record.tree_size_min = min_nodes;
+}
+
+}  // namespace foresight::server
