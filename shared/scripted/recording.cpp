@@ -25,47 +25,46 @@ constexpr std::size_t kMaxParseEvents = 16 * kMaxRecordingSamples + 4096;
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 constexpr double kMaxAngle_deg = 1.0e6;
 
-// ---------------------------------------------------------------- number text
+// ---------------------------------------------------------------- numbers written
 
 // The one conversion from file degrees to stored radians; the writer searches for the shortest
 // text that this maps back onto the stored value.
 float rad_from_deg(double deg) { return static_cast<float>(deg * kDegToRad); }
 
-std::string shortest_double(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+// nlohmann writes a double as the shortest text that parses back to it. A float widened to double
+// would print all its binary digits (0.7071067690849304), so the writer hands over the double
+// nearest to the float's own shortest text (0.70710677), checked against the parse path (text ->
+// double -> float): if double rounding ever differed from the float's, the exact widened value.
+// Whole numbers go out as integers ("45", where nlohmann would write 45.0), except -0, whose sign
+// a direction's atan2 would see.
+json double_json(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  if (v == std::trunc(v) && std::fabs(v) < 9.0e15 && !(v == 0.0 && std::signbit(v))) return static_cast<int64_t>(v);
+  return v;
 }
 
-// Shortest float text, checked against the parse path (text -> double -> float): double rounding
-// could in principle differ from strtof, and then the exact double of the float is written.
-std::string shortest_float(float v) {
+json float_json(float v) {
+  if (!std::isfinite(v)) return nullptr;
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, r.ptr);
-  if (static_cast<float>(std::strtod(s.c_str(), nullptr)) != v) s = shortest_double(static_cast<double>(v));
-  return s;
+  const double shortest = std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+  return double_json(static_cast<float>(shortest) == v ? shortest : static_cast<double>(v));
 }
 
-// The shortest text of the angle in degrees whose parse gives back exactly `rad`: the degrees
-// rounded to 0..9 decimals, else the exact double (within 1e-16 of the float's value, far inside
-// half a float ulp, so it always maps back).
-std::string degrees_text(float rad) {
+std::string number_text(double v) { return double_json(v).dump(); }
+
+// The angle in degrees with the fewest decimals (0..9) whose parse gives back exactly `rad`,
+// else the exact double (within 1e-16 of the float's value, far inside half a float ulp, so it
+// always maps back).
+json degrees_json(float rad) {
+  if (!std::isfinite(rad)) return nullptr;
   const double deg = static_cast<double>(rad) / kDegToRad;
   double scale = 1.0;
   for (int decimals = 0; decimals <= 9; ++decimals, scale *= 10.0) {
     const double candidate = std::round(deg * scale) / scale;
-    if (rad_from_deg(candidate) == rad) return shortest_double(candidate);
+    if (rad_from_deg(candidate) == rad) return double_json(candidate);
   }
-  return shortest_double(deg);
-}
-
-std::string number_text(double v) { return std::isfinite(v) ? shortest_double(v) : "null"; }
-std::string number_text(float v) { return std::isfinite(v) ? shortest_float(v) : "null"; }
-std::string angle_text(float rad) { return std::isfinite(rad) ? degrees_text(rad) : "null"; }
-
-std::string string_text(const std::string& s) {
-  return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
+  return double_json(deg);
 }
 
 // ---------------------------------------------------------------- reading
@@ -85,11 +84,11 @@ bool read_sample(Reader& r, const json& j, std::size_t index, double previous_t,
     return false;
   if (previous_t < 0 && out.t_s != 0.0)
     return r.fail(Reader::child(path, "t"),
-                  "the first sample must be at t = 0, got " + shortest_double(out.t_s));
+                  "the first sample must be at t = 0, got " + number_text(out.t_s));
   if (previous_t >= 0 && !(out.t_s > previous_t))
     return r.fail(Reader::child(path, "t"),
-                  shortest_double(out.t_s) + (out.t_s == previous_t ? " repeats" : " is before") +
-                      " the previous sample's t (" + shortest_double(previous_t) +
+                  number_text(out.t_s) + (out.t_s == previous_t ? " repeats" : " is before") +
+                      " the previous sample's t (" + number_text(previous_t) +
                       "): times must increase strictly");
   constexpr auto kInReason = Reader::Component::in_reason;
   float dir[2] = {0, 0};
@@ -100,7 +99,7 @@ bool read_sample(Reader& r, const json& j, std::size_t index, double previous_t,
   // The same test the avatar applies (control_input_valid), so every parsed sample is accepted.
   if (!(glm::dot(out.input.camera_dir, out.input.camera_dir) <= 1.0001f))
     return r.fail(Reader::child(path, "dir"),
-                  "length " + shortest_float(glm::length(out.input.camera_dir)) + " is more than 1");
+                  "length " + float_json(glm::length(out.input.camera_dir)).dump() + " is more than 1");
   double yaw_deg = 0;
   if (!r.member(j, path, "camera_yaw_deg", true, v, kNull) ||
       !r.number(*v, Reader::child(path, "camera_yaw_deg"), -kMaxAngle_deg, kMaxAngle_deg, yaw_deg))
@@ -133,7 +132,7 @@ bool read_header(Reader& r, const json& root) {
   if (!v->is_number_integer() && !v->is_number_unsigned())
     return r.fail("version", "expected an integer, got " + json_describe(*v));
   if (v->get<double>() != kRecordingVersion)
-    return r.fail("version", "unsupported version " + shortest_double(v->get<double>()) +
+    return r.fail("version", "unsupported version " + number_text(v->get<double>()) +
                                  " (this build reads version " + std::to_string(kRecordingVersion) + ")");
   return true;
 }
@@ -300,31 +299,36 @@ bool recording_load(const std::filesystem::path& path, Recording& recording, std
 }
 
 std::string recording_write(const Recording& rec) {
-  std::string s;
-  s.reserve(256 + rec.samples.size() * 110);
-  s += "{\n  \"format\": \"" + std::string(kRecordingFormat) + "\",\n";
-  s += "  \"version\": " + std::to_string(kRecordingVersion) + ",\n";
-  s += "  \"scene\": " + string_text(rec.scene) + ",\n";
-  s += "  \"name\": " + string_text(rec.name) + ",\n";
+  // Every value is written by nlohmann (numbers, strings and their escapes); the layout is a key
+  // per line and a sample per line, so a changed recording diffs line by line.
+  using ojson = nlohmann::ordered_json;
+  ojson head;
+  head["format"] = kRecordingFormat;
+  head["version"] = kRecordingVersion;
+  head["scene"] = rec.scene;
+  head["name"] = rec.name;
   if (rec.library_hash != 0) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(rec.library_hash));
-    s += "  \"library_hash\": \"" + std::string(hex) + "\",\n";
+    head["library_hash"] = hex;
   }
-  s += "  \"start\": {\"pos\": [" + number_text(rec.start_pos_m.x) + ", " + number_text(rec.start_pos_m.y) +
-       "], \"heading_deg\": " + angle_text(rec.start_heading_rad) + "},\n";
-  s += "  \"goal\": {\"pos\": [" + number_text(rec.goal_pos_m.x) + ", " + number_text(rec.goal_pos_m.y) +
-       "], \"radius\": " + number_text(rec.goal_radius_m) + "},\n";
+  head["start"] = {{"pos", {float_json(rec.start_pos_m.x), float_json(rec.start_pos_m.y)}},
+                   {"heading_deg", degrees_json(rec.start_heading_rad)}};
+  head["goal"] = {{"pos", {float_json(rec.goal_pos_m.x), float_json(rec.goal_pos_m.y)}},
+                  {"radius", float_json(rec.goal_radius_m)}};
+  const auto dump = [](const ojson& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); };
+  std::string s = "{\n";
+  for (const auto& [key, value] : head.items()) s += "  " + dump(key) + ": " + dump(value) + ",\n";
   s += "  \"samples\": [";
   for (std::size_t i = 0; i < rec.samples.size(); ++i) {
     const CommandSample& c = rec.samples[i];
-    s += i == 0 ? "\n    " : ",\n    ";
-    s += "{\"t\": " + number_text(c.t_s);
-    s += ", \"dir\": [" + number_text(c.input.camera_dir.x) + ", " + number_text(c.input.camera_dir.y) + "]";
-    s += ", \"camera_yaw_deg\": " + angle_text(c.input.camera_yaw_rad);
-    s += ", \"camera_pos\": [" + number_text(c.camera_pos_m.x) + ", " + number_text(c.camera_pos_m.y) + ", " +
-         number_text(c.camera_pos_m.z) + "]";
-    s += std::string(", \"crouch\": ") + (c.input.crouch ? "true" : "false") + "}";
+    const ojson sample = {
+        {"t", double_json(c.t_s)},
+        {"dir", {float_json(c.input.camera_dir.x), float_json(c.input.camera_dir.y)}},
+        {"camera_yaw_deg", degrees_json(c.input.camera_yaw_rad)},
+        {"camera_pos", {float_json(c.camera_pos_m.x), float_json(c.camera_pos_m.y), float_json(c.camera_pos_m.z)}},
+        {"crouch", c.input.crouch}};
+    s += (i == 0 ? "\n    " : ",\n    ") + dump(sample);
   }
   s += rec.samples.empty() ? "]\n}\n" : "\n  ]\n}\n";
   return s;

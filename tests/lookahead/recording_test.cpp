@@ -78,7 +78,7 @@ TEST(Recording, WriteThenParseGivesTheSameRecordingExactly) {
   expect_same(r, back);
   EXPECT_EQ(recording_write(back), text);  // writing is deterministic and stable
   EXPECT_DOUBLE_EQ(back.duration_s(), 2.5);
-  EXPECT_NE(text.find("\"camera_yaw_deg\": 45,"), std::string::npos) << text;  // short numbers
+  EXPECT_NE(text.find("\"camera_yaw_deg\":45,"), std::string::npos) << text;  // short numbers
 
   const auto dir = test::scratch_dir();
   ASSERT_TRUE(recording_save(dir / "r.json", r, error)) << error;
