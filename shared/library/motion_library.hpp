@@ -24,17 +24,23 @@ struct SegmentMotion {
   Placement end;
 };
 
-struct MotionLibrary {
-  // Source data (filled by a builder, then compiled by motion_library_compile in
-  // library_build/library_compile.hpp).
+/// What a builder fills at build time (library_build/): the skeleton, the clips and their tags,
+/// the graph.
+struct MotionLibrarySource {
   std::string name;
   Skeleton skeleton;
   std::vector<Clip> clips;
   std::vector<uint32_t> clip_tags;  ///< SegmentTag bits per clip.
   MotionGraph graph;
-
-  // Compiled data.
   float body_margin_m = 0.08f;      ///< Body cylinder grown sideways past the joints (flesh).
+
+  int num_joints() const { return skeleton.num_joints(); }
+};
+
+/// The compiled library the runtime reads: its source, moved in as compiled, and the tables
+/// derived from it. Made by motion_library_compile (library_build/library_compile.hpp) only;
+/// every run-time function takes it const.
+struct MotionLibrary : MotionLibrarySource {
   float head_top_margin_m = 0.15f;  ///< ... and above the highest joint (pose_check.hpp).
   std::vector<vec3> clip_forward_axis;   ///< Pelvis-local forward axis per clip.
   std::vector<int> clip_track_offset;    ///< Start of each clip's frames in root_track.
@@ -55,7 +61,6 @@ struct MotionLibrary {
   std::vector<quat> transition_offset_rot;
   uint64_t content_hash = 0;
 
-  int num_joints() const { return skeleton.num_joints(); }
   Placement root_placement(int clip, int frame) const {
     return root_track[static_cast<size_t>(clip_track_offset[clip] + frame)];
   }

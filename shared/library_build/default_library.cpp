@@ -10,7 +10,7 @@ namespace foresight {
 
 MotionLibrary motion_library_default() {
   author::DefaultLibrarySpec spec = author::build_default_library();
-  MotionLibrary lib;
+  MotionLibrarySource lib;
   lib.name = "default";
   lib.skeleton = std::move(spec.skeleton);
   for (author::AuthoredClip& c : spec.clips) {
@@ -22,12 +22,13 @@ MotionLibrary motion_library_default() {
     declared.push_back({t.from, t.to, t.blend_frames});
   std::string error;
   // The default library is project code: a failure here is a programming error, caught by tests.
+  MotionLibrary compiled;
   if (!graph_from_declared(lib.clips, lib.clip_tags, declared, lib.graph, error) ||
-      !motion_library_compile(lib, error)) {
+      !motion_library_compile(std::move(lib), compiled, error)) {
     std::fprintf(stderr, "default motion library is broken: %s\n", error.c_str());
     std::abort();
   }
-  return lib;
+  return compiled;
 }
 
 }  // namespace foresight

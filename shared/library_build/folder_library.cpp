@@ -29,7 +29,7 @@ uint32_t tags_of_clip(const MotionLibrary& lib, int clip) {
 // Step 1: every file imported onto the canonical skeleton, the first usable one's body the
 // library's; other bodies are retargeted onto it, striding in proportion to the legs.
 void import_clips(const MotionSource& source, const std::vector<std::filesystem::path>& files,
-                  MotionLibrary& lib, LibraryImportReport& rep) {
+                  MotionLibrarySource& lib, LibraryImportReport& rep) {
   BvhImportOptions import = source.import;
   import.canonical = true;
   float library_leg_m = 0.0f;
@@ -58,7 +58,7 @@ void import_clips(const MotionSource& source, const std::vector<std::filesystem:
 // Step 3: the graph pruned to its largest strongly connected component, what it kept of each clip
 // reported, and derived clips whose pieces it dropped removed (captured clips stay: their files
 // were read, the report names them).
-void prune(MotionGraph graph, size_t captured, MotionLibrary& lib, LibraryImportReport& rep) {
+void prune(MotionGraph graph, size_t captured, MotionLibrarySource& lib, LibraryImportReport& rep) {
   rep.clips.resize(lib.clips.size());
   for (size_t c = 0; c < lib.clips.size(); ++c) rep.clips[c] = {lib.clips[c].name, c >= captured, 0, 0, {}};
   for (const Segment& s : graph.segments) ++rep.clips[static_cast<size_t>(s.clip)].segments;
@@ -103,7 +103,7 @@ bool motion_library_from_folder(const MotionSource& source, MotionLibrary& out,
   std::sort(files.begin(), files.end());
 
   LibraryImportReport rep;
-  MotionLibrary lib;
+  MotionLibrarySource lib;
   lib.name = dir.filename().string();
   import_clips(source, files, lib, rep);
   if (report) *report = rep;
@@ -134,12 +134,14 @@ bool motion_library_from_folder(const MotionSource& source, MotionLibrary& out,
 
   // Step 4: compile; tag captured clips from the compiled root tracks, then recompile so segments
   // and hash carry the tags.
-  if (!motion_library_compile(lib, error)) return false;
-  for (size_t c = 0; c < captured; ++c) lib.clip_tags[c] = tags_of_clip(lib, static_cast<int>(c));
-  for (Segment& s : lib.graph.segments) s.tags = lib.clip_tags[static_cast<size_t>(s.clip)];
-  if (!motion_library_compile(lib, error)) return false;
-  out = std::move(lib);
-  return true;
+  MotionLibrary first;
+  if (!motion_library_compile(std::move(lib), first, error)) return false;
+  std::vector<uint32_t> tags = first.clip_tags;
+  for (size_t c = 0; c < captured; ++c) tags[c] = tags_of_clip(first, static_cast<int>(c));
+  MotionLibrarySource tagged = std::move(static_cast<MotionLibrarySource&>(first));
+  tagged.clip_tags = std::move(tags);
+  for (Segment& s : tagged.graph.segments) s.tags = tagged.clip_tags[static_cast<size_t>(s.clip)];
+  return motion_library_compile(std::move(tagged), out, error);
 }
 
 bool motion_library_load(const MotionSource& source, MotionLibrary& out, std::string& error) {

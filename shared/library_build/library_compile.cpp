@@ -70,7 +70,7 @@ uint64_t content_hash_of(const MotionLibrary& lib) {
   return h.digest();
 }
 
-bool validate(const MotionLibrary& lib, std::string& error) {
+bool validate(const MotionLibrarySource& lib, std::string& error) {
   const int n = lib.skeleton.num_joints();
   if (!lib.skeleton.valid()) return error = lib.name + ": invalid skeleton", false;
   if (lib.clip_tags.size() != lib.clips.size())
@@ -114,15 +114,13 @@ vec2 facing_in(const MotionLibrary& lib, const Segment& s, int frame) {
 
 }  // namespace
 
-bool motion_library_compile(MotionLibrary& lib, std::string& error) {
-  if (!validate(lib, error)) return false;
+bool motion_library_compile(MotionLibrarySource source, MotionLibrary& out, std::string& error) {
+  if (!validate(source, error)) return false;
+  MotionLibrary lib;
+  static_cast<MotionLibrarySource&>(lib) = std::move(source);
   const int n = lib.num_joints();
 
   // Root tracks per clip.
-  lib.clip_forward_axis.clear();
-  lib.clip_track_offset.clear();
-  lib.root_track.clear();
-  lib.foot_contact.clear();
   std::vector<Placement> track;
   lib.max_joint_step_m = 0.0f;
   for (const Clip& c : lib.clips) {
@@ -137,8 +135,6 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   lib.head_top_margin_m = head_top_margin_m(lib.skeleton);
 
   // Per segment: relative movement and body volumes in the segment's own frame.
-  lib.segment_motion.clear();
-  lib.segment_shapes.clear();
   std::vector<std::vector<BodyVolume>> volumes(lib.graph.segments.size());
   // The first frames of a segment are shown blended from any predecessor: their volumes are
   // fitted to the joints of every pose shown there (clip and blends), collected here.
@@ -200,6 +196,7 @@ bool motion_library_compile(MotionLibrary& lib, std::string& error) {
   for (const std::vector<BodyVolume>& frames : volumes) lib.segment_shapes.push_back(make_segment_shape(frames));
 
   lib.content_hash = content_hash_of(lib);
+  out = std::move(lib);
   return true;
 }
 

@@ -8,9 +8,9 @@
 
 namespace foresight {
 
-/// Checks the source data and computes the compiled data and the content hash.
-/// Returns false with a reason when clips and skeleton disagree, a segment's frame range is
-/// outside its clip, or a transition names a missing segment.
-bool motion_library_compile(MotionLibrary& library, std::string& error);
+/// Checks the source, moves it into `out` and computes the compiled tables and the content hash.
+/// Returns false with a reason (and `out` untouched) when clips and skeleton disagree, a segment's
+/// frame range is outside its clip, or a transition names a missing segment.
+bool motion_library_compile(MotionLibrarySource source, MotionLibrary& out, std::string& error);
 
 }  // namespace foresight

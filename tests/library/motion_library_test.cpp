@@ -10,8 +10,8 @@
 namespace foresight {
 namespace {
 
-MotionLibrary walker_library() {
-  MotionLibrary lib;
+MotionLibrarySource walker_source() {
+  MotionLibrarySource lib;
   lib.name = "walker";
   lib.skeleton = test::walker_skeleton();
   lib.clips = {test::walker_clip(lib.skeleton, "a", 90, 30, 0),
@@ -21,7 +21,13 @@ MotionLibrary walker_library() {
   EXPECT_TRUE(graph_build_automatic(lib.skeleton, lib.clips, AutoGraphOptions{}, lib.graph,
                                     nullptr, error))
       << error;
-  EXPECT_TRUE(motion_library_compile(lib, error)) << error;
+  return lib;
+}
+
+MotionLibrary walker_library() {
+  MotionLibrary lib;
+  std::string error;
+  EXPECT_TRUE(motion_library_compile(walker_source(), lib, error)) << error;
   return lib;
 }
 
@@ -55,21 +61,24 @@ TEST(MotionLibrary, EdgesAreContinuous) {
 }
 
 TEST(MotionLibrary, ContentHashChangesWithTheData) {
-  MotionLibrary a = walker_library();
-  MotionLibrary b = walker_library();
-  EXPECT_EQ(a.content_hash, b.content_hash);
-  b.clips[0].frame_rot(5)[1] = quat(1, 0, 0, 0);
+  const MotionLibrary a = walker_library();
+  EXPECT_EQ(a.content_hash, walker_library().content_hash);
+  MotionLibrarySource changed = walker_source();
+  changed.clips[0].frame_rot(5)[1] = quat(1, 0, 0, 0);
+  MotionLibrary b;
   std::string error;
-  ASSERT_TRUE(motion_library_compile(b, error));
+  ASSERT_TRUE(motion_library_compile(std::move(changed), b, error));
   EXPECT_NE(a.content_hash, b.content_hash);
 }
 
 TEST(MotionLibrary, CompileRefusesSegmentsOutsideTheirClip) {
-  MotionLibrary lib = walker_library();
-  lib.graph.segments[0].end_frame = lib.clips[lib.graph.segments[0].clip].num_frames;
+  MotionLibrarySource source = walker_source();
+  source.graph.segments[0].end_frame = source.clips[source.graph.segments[0].clip].num_frames;
+  MotionLibrary lib;
   std::string error;
-  EXPECT_FALSE(motion_library_compile(lib, error));
+  EXPECT_FALSE(motion_library_compile(std::move(source), lib, error));
   EXPECT_NE(error.find("outside its clip"), std::string::npos) << error;
+  EXPECT_EQ(lib.content_hash, 0u);  // nothing compiled into it
 }
 
 }  // namespace
