@@ -1,6 +1,6 @@
 #include "fighter_adapt_bench.hpp"
 
-#include "fighter/fighter_cast.hpp"
+#include "fighter_build/fighter_cast.hpp"
 #include "lab/lab_experiments.hpp"
 
 #include <algorithm>

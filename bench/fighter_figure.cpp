@@ -1,6 +1,6 @@
 #include "fighter_figure.hpp"
 
-#include "fighter/fighter_cast.hpp"
+#include "fighter_build/fighter_cast.hpp"
 
 #include <cstdio>
 #include <sstream>

@@ -1,4 +1,6 @@
 #include "fighter_retrieval_bench.hpp"
+#include "fighter_build/retrieval_index.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 
 #include "fighter/retrieval.hpp"
 

@@ -5,7 +5,7 @@
 // 10,000-entry one. Queries are generated before timing; each query is timed on its own with
 // steady_clock (about 20-30 ns of clock overhead included in every figure).
 #include "bench_json.hpp"
-#include "fighter/pose_clusters.hpp"
+#include "fighter_build/pose_clusters.hpp"
 
 #include <cstdint>
 #include <filesystem>

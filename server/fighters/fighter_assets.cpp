@@ -1,4 +1,6 @@
 #include "fighters/fighter_assets.hpp"
+#include "fighter_build/retrieval_index.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 
 #include "anim/root_motion.hpp"
 

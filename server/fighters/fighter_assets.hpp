@@ -3,6 +3,7 @@
 // the strike database (the default library's punches and kicks, plus an optional BVH folder), its
 // clusters and retrieval index, the five morphologies with their limb models, and the models of
 // the takes and of the motion library's skeleton (for retargeting locomotion onto a fighter).
+#include "fighter/fighter_database.hpp"
 #include "fighter/limb_representation.hpp"
 #include "fighter/morphology.hpp"
 #include "fighter/retarget.hpp"

@@ -35,8 +35,9 @@
 // trajectory the paper names: a kick's foot passes through every low height on its way up, so a
 // whole-trajectory minimum would answer a low target with a high kick; the adaptation moves the
 // effector at the hit time, so the hit's neighbourhood is what it has to bend.
-#include "fighter/fighter_database.hpp"
-#include "fighter/pose_clusters.hpp"
+#include "fighter/pose_cloud.hpp"
+#include "fighter/strike_kind.hpp"
+#include "math/types.hpp"
 
 #include <array>
 #include <cstdint>
@@ -47,11 +48,6 @@
 #include <vector>
 
 namespace foresight {
-
-struct RetrievalIndexParams {
-  int min_lead_frames = 3;    ///< A start pose lies at least this many frames before the hit.
-  int hit_window_frames = 3;  ///< d_target over [hit - w, hit + w].
-};
 
 /// Per start pose, what the alignment-free filters read, in one 64-byte record (gather() streams
 /// these and touches the cloud only for poses that survive them). Boxes are the entry's hit box
@@ -126,16 +122,6 @@ struct FighterRetrievalIndex {
   std::vector<vec3> frame_hit;
   int hit_window_frames = 3;
 };
-
-void fighter_retrieval_index_build(const FighterDatabase& db, const PoseClusters& clusters,
-                                   const RetrievalIndexParams& params, FighterRetrievalIndex& out);
-
-/// Clusters (through the cache in `cache_dir`; empty: no cache) and builds the index: everything
-/// the offline side does once a database is loaded. `status` and `warning` as
-/// pose_clusters_load_or_compute.
-void fighter_retrieval_prepare(const FighterDatabase& db, const PoseClusterParams& cluster_params,
-                               const RetrievalIndexParams& index_params, const std::filesystem::path& cache_dir,
-                               FighterRetrievalIndex& out, ClusterCacheStatus* status, std::string* warning);
 
 struct RetrievalQuery {
   /// The fighter's current key points, its root frame, metres (fighter_key_points_m).

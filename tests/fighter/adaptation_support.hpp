@@ -1,7 +1,7 @@
 #pragma once
-// Shared by the adaptation tests: the default cast (fighter/fighter_cast.hpp), its limb models
+// Shared by the adaptation tests: the default cast (fighter_build/fighter_cast.hpp), its limb models
 // expected to build.
-#include "fighter/fighter_cast.hpp"
+#include "fighter_build/fighter_cast.hpp"
 
 #include <gtest/gtest.h>
 

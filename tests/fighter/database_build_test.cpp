@@ -1,6 +1,7 @@
 // Building the fighter database (fighter_database.hpp): from the default library, from BVH folders
 // with and without a sidecar, and the synthetic benchmark database.
 #include "author/default_library.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 #include "import/bvh.hpp"
 #include "import/bvh_import.hpp"
 #include "fighter/fighter_database.hpp"

@@ -1,6 +1,7 @@
 // The aligned pose distance (pose_cloud.hpp) and the cached k-means (pose_clusters.hpp).
 #include "fighter/fighter_database.hpp"
-#include "fighter/pose_clusters.hpp"
+#include "fighter_build/fighter_database_build.hpp"
+#include "fighter_build/pose_clusters.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>

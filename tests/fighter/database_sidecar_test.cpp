@@ -1,7 +1,7 @@
 // The strike sidecar (strike_annotation.hpp): round trips, and one test per way a file is broken,
 // each checking that the message names the file and the field.
 #include "author/default_skeleton.hpp"
-#include "fighter/strike_annotation.hpp"
+#include "fighter_build/strike_annotation.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>

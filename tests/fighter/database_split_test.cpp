@@ -3,7 +3,7 @@
 #include "import/bvh_import.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
-#include "fighter/strike_split.hpp"
+#include "fighter_build/strike_split.hpp"
 #include "support/test_paths.hpp"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,8 @@
 // retrieve() must not allocate once the retriever exists (it runs in the server tick). Counted by
 // the test binary's replaced global operator new (support/alloc_counter).
 #include "fighter/retrieval.hpp"
+#include "fighter_build/retrieval_index.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 
 #include "support/alloc_counter.hpp"
 

@@ -2,6 +2,8 @@
 // sidecar) plus the default strikes, clustered through the disk cache, queried with a pose built
 // from a skeleton, its rig, global joint positions and a root placement.
 #include "anim/fk.hpp"
+#include "fighter_build/retrieval_index.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 #include "anim/root_motion.hpp"
 #include "fighter/retrieval.hpp"
 #include "support/test_paths.hpp"

@@ -4,6 +4,8 @@
 // widened in the same steps). Same entry, start frame, scope and cost on random queries over the
 // default library and a synthetic database, with default, capped and other weights.
 #include "fighter/retrieval.hpp"
+#include "fighter_build/retrieval_index.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 
 #include <gtest/gtest.h>
 

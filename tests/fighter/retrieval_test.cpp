@@ -1,5 +1,7 @@
 // Motion retrieval (retrieval.hpp, paper 3.3) on the default library's strikes.
 #include "fighter/retrieval.hpp"
+#include "fighter_build/retrieval_index.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "fighter/fighter_cast.hpp"
+#include "fighter_build/fighter_cast.hpp"
 
 namespace foresight {
 

@@ -1,4 +1,4 @@
-#include "fighter/strike_split.hpp"
+#include "fighter_build/strike_split.hpp"
 
 #include <algorithm>
 #include <cassert>

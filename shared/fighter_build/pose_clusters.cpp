@@ -1,4 +1,4 @@
-#include "fighter/pose_clusters.hpp"
+#include "fighter_build/pose_clusters.hpp"
 
 #include "io/text_file.hpp"
 

@@ -14,7 +14,7 @@
 // A strike's window starts where its effector's speed (relative to the pelvis) rises above a
 // fraction of its approach peak, and ends where it falls below a fraction of its retraction peak.
 #include "fighter/fighter_rig.hpp"
-#include "fighter/strike_annotation.hpp"
+#include "fighter_build/strike_annotation.hpp"
 #include "math/types.hpp"
 
 #include <span>

@@ -20,6 +20,7 @@
 // sidecar does not list has its strikes detected automatically. Keys starting with '_' are
 // comments.
 #include "anim/skeleton.hpp"
+#include "fighter/strike_kind.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -30,16 +31,6 @@
 
 namespace foresight {
 
-enum class StrikeKind : std::uint8_t { kPunch, kKick };
-enum class StrikeSide : std::uint8_t { kLeft, kRight };
-enum class StrikeHeight : std::uint8_t { kLow, kMid, kHigh };
-
-std::string_view strike_kind_name(StrikeKind kind);      ///< "punch" / "kick"
-std::string_view strike_side_name(StrikeSide side);      ///< "left" / "right"
-std::string_view strike_height_name(StrikeHeight height);///< "low" / "mid" / "high"
-bool strike_kind_parse(std::string_view text, StrikeKind& out);
-bool strike_side_parse(std::string_view text, StrikeSide& out);
-bool strike_height_parse(std::string_view text, StrikeHeight& out);
 
 /// One strike of a take.
 struct StrikeMark {

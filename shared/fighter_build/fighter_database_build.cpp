@@ -1,4 +1,4 @@
-#include "fighter/fighter_database.hpp"
+#include "fighter_build/fighter_database_build.hpp"
 
 #include "author/default_library.hpp"
 #include "import/bvh_import.hpp"
