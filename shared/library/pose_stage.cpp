@@ -125,7 +125,11 @@ void PoseStage::adapt_to_ground(float dt_s) {
     float gh = 0.0f, gb = 0.0f;
     const bool has_heel = held_at(heel, gh), has_ball = held_at(ball, gb);
     target[foot] = foot_y_[foot];  // over a hole: where it was
-    if (heel_down && has_heel) target[foot] = gh;  // the ball then pitches to its own ground
+    // Across a stair's edge (the ball's ground higher than the foot can pitch to, below) the foot
+    // rests on the step with its heel hanging, as a foot on a stair does; otherwise on its heel.
+    const float pitch_reach = 0.5f * glm::length(shown_[ball] - shown_[heel]);
+    if (heel_down && ball_down && has_heel && has_ball && gb - gh > pitch_reach) target[foot] = gb;
+    else if (heel_down && has_heel) target[foot] = gh;  // the ball then pitches to its own ground
     else if (ball_down && has_ball) target[foot] = gb;
     else if (has_ball || has_heel) target[foot] = has_ball ? gb : gh;  // swinging: the front of the foot leads
   }

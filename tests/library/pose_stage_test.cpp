@@ -289,6 +289,35 @@ TEST(PoseStage, FeetStandOnTheGroundUnderThem) {
   }
 }
 
+// A foot planted across a stair's edge (heel over the floor, ball over a 15 cm step) rests on
+// the step, its heel hanging, as a foot on a stair does: placed at the heel's level, the ball
+// would stand 15 cm inside the step.
+TEST(PoseStage, AFootAcrossAStepEdgeRestsOnTheStep) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PlaybackState s{idle, 0, Placement{}, -1};
+  PoseStage flat(lib);
+  const std::span<const vec3> played = flat.update(s, 0.0f);
+  const vec3 heel = played[static_cast<size_t>(foot_heel_joint(0))], ball = played[static_cast<size_t>(foot_ball_joint(0))];
+  ASSERT_GT(ball.z - heel.z, 0.05f);  // the ball ahead of the heel
+  Terrain stair;  // from between the left heel and ball forwards, under the left foot only
+  stair.steps.push_back({"stair", vec3(heel.x - 0.08f, 0.0f, 0.5f * (heel.z + ball.z)), vec3(heel.x + 0.08f, 0.15f, 1.0f)});
+  PoseStage stage(lib);
+  stage.set_ground(&stair);
+  stage.update(s, 0.0f);
+  for (int f = 1; f <= 45; ++f) {
+    s.frame = f % lib.graph.segments[idle].num_frames();
+    stage.update(s, 1.0f / 30.0f);
+  }
+  const std::span<const vec3> shown = stage.shown(), animated = stage.animated();
+  ASSERT_EQ(stage.contact() & (kLeftHeel | kLeftBall), kLeftHeel | kLeftBall);
+  const auto b = static_cast<size_t>(foot_ball_joint(0)), h = static_cast<size_t>(foot_heel_joint(0));
+  EXPECT_NEAR(shown[b].y - animated[b].y, 0.15f, 0.005f) << "the ball on the step";
+  EXPECT_GT(shown[h].y - animated[h].y, 0.10f) << "the heel hangs over the floor";
+  EXPECT_NEAR(glm::length(shown[b] - shown[h]), glm::length(animated[b] - animated[h]), 1e-3f);
+}
+
 // Ground adaptation on capture the team did not make (the Bandai walk in inches under a dummy
 // root): walked up a 20 % slope, its planted parts stand on the ground under them, where the
 // played ones sink into it by up to the slope's rise along the stride.
