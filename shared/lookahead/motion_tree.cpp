@@ -1,7 +1,6 @@
 #include "lookahead/motion_tree.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cassert>
 #include <utility>
 
@@ -50,15 +49,20 @@ void MotionTree::reset(int segment, const Placement& start, int incoming_transit
 }
 
 void MotionTree::reserve_nodes(int n) {
+  // Exactly n: a resize would let the vector choose (twice the old size).
   const size_t size = static_cast<size_t>(n);
-  nodes_.resize(size);
-  order_.resize(size);
+  std::vector<MotionTreeNode> nodes(size);
+  std::vector<uint32_t> order(size);
+  std::copy(nodes_.begin(), nodes_.end(), nodes.begin());
+  std::copy(order_.begin(), order_.end(), order.begin());
+  nodes_.swap(nodes);
+  order_.swap(order);
   queue_.reserve(size);  // the walk stack grows on its own: it holds far fewer than the nodes
 }
 
-// Memory follows the work both ways: the pool doubles as the budget pays for nodes, and once the
-// tree has stayed at half of it or less (at every re-root and reset) for kShrinkCheckReroots
-// re-roots (several seconds of play) it is cut to the power of two above that peak and an eighth.
+// Memory follows the work both ways: the pool grows by half as the budget pays for nodes, and once
+// the tree has stayed at two thirds of it or less (at every re-root and reset) for
+// kShrinkCheckReroots re-roots (several seconds of play) it is cut to that peak and an eighth.
 // Counting re-roots, not resets: steering resets a tree every steered frame, and a window of
 // frames let pools shrink and grow back several times a second (copies and allocator churn). Without this, every avatar kept the largest tree it ever
 // had: players joining an empty server get the whole budget and fill 8192 nodes in their first
@@ -67,7 +71,7 @@ bool MotionTree::shrink_due(bool reroot) {
   peak_nodes_ = std::max(peak_nodes_, num_nodes_);
   if (reroot) ++reroots_since_check_;
   if (reroots_since_check_ < kShrinkCheckReroots) return false;
-  const bool due = config_.shrink_pool && node_capacity() > kInitialNodes && 2 * peak_nodes_ <= node_capacity();
+  const bool due = config_.shrink_pool && node_capacity() > kInitialNodes && 3 * peak_nodes_ <= 2 * node_capacity();
   if (!due) {  // the next window starts now (a due shrink starts it in adopt_storage)
     reroots_since_check_ = 0;
     peak_nodes_ = num_nodes_;
@@ -76,9 +80,10 @@ bool MotionTree::shrink_due(bool reroot) {
 }
 
 int MotionTree::shrunk_capacity() const {
-  // An eighth over the peak, so a tree that keeps its size does not double again at once.
-  return std::clamp(static_cast<int>(std::bit_ceil(static_cast<unsigned>(peak_nodes_ + peak_nodes_ / 8 + 1))), kInitialNodes,
-                    config_.max_nodes);
+  // An eighth over the peak (in whole 64-node steps), so a tree that keeps its size does not grow
+  // again at once.
+  const int wanted = (peak_nodes_ + peak_nodes_ / 8 + 64) / 64 * 64;
+  return std::clamp(wanted, kInitialNodes, config_.max_nodes);
 }
 
 void MotionTree::adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<uint32_t> order) {
@@ -139,10 +144,10 @@ int MotionTree::allocate() {
     free_head_ = nodes_[static_cast<size_t>(i)].next_sibling;
   } else {
     assert(first_unused_ < config_.max_nodes);
-    // The storage doubles when the budget pays for more nodes than it holds (a few times in an
-    // avatar's life, never per node); no reference into nodes_ is held across allocate().
+    // The storage grows by half when the budget pays for more nodes than it holds (a few times in
+    // an avatar's life, never per node); no reference into nodes_ is held across allocate().
     if (first_unused_ == static_cast<int>(nodes_.size()))
-      reserve_nodes(std::min(config_.max_nodes, 2 * first_unused_));
+      reserve_nodes(std::min(config_.max_nodes, first_unused_ + std::max(first_unused_ / 2, 64)));
     ++first_unused_;
   }
   MotionTreeNode& n = nodes_[static_cast<size_t>(i)];

@@ -8,8 +8,8 @@
 // of priorities (4.3); the root moves down and the sibling subtrees are freed (Fig. 4).
 //
 // Memory: nodes live in a pool with a free list and the leaf queue is a heap over a vector. The
-// pool starts at kInitialNodes and doubles when the budget pays for more nodes than it holds, up
-// to max_nodes; a pool that stays at most half full for a while is cut back (compact(): the
+// pool starts at kInitialNodes and grows by half when the budget pays for more nodes than it
+// holds, up to max_nodes; a pool that stays at most two thirds full for a while is cut back (compact(): the
 // live nodes renumbered into a smaller pool at a re-root). So a tree's memory follows the nodes
 // its budget pays for (about 400 at 200 players, rather than a pool of 8192 for everyone).
 // Nothing is allocated per node: only these few resizes.
