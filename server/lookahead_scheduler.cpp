@@ -38,13 +38,14 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
   const double per_weight_ms = budget_ms * workers_.threads() / total;
   const Clock::time_point end =
       now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
-  // Three words captured: the job fits std::function's inline storage (no allocation per tick).
+  // Two pointers captured: the job fits std::function's inline storage (no allocation per tick).
   const struct {
     GraphAvatar* avatars;
     double per_weight_ms;
     Clock::time_point end;
-  } phase{avatars.data(), per_weight_ms, end};
-  workers_.run(static_cast<int>(n), [this, &phase, tick](int item, int) {
+    uint32_t tick;
+  } phase{avatars.data(), per_weight_ms, end, tick};
+  workers_.run(static_cast<int>(n), [this, &phase](int item, int) {
     GraphAvatar& g = phase.avatars[item];
     LookaheadAvatar& a = *g.avatar;
     GrowBudget budget;
@@ -65,7 +66,7 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
     const int frames_left =
         library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
     const bool periodic =
-        (tick + g.id) % static_cast<uint32_t>(config_.resort_interval_ticks) == 0 && (!timed || Clock::now() < phase.end);
+        (phase.tick + g.id) % static_cast<uint32_t>(config_.resort_interval_ticks) == 0 && (!timed || Clock::now() < phase.end);
     if (g.input_changed || frames_left <= 1 || periodic) {
       a.set_input(g.input);
       g.input_changed = false;

@@ -10,6 +10,7 @@
 #include "world/scene_load.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <thread>
@@ -523,9 +524,12 @@ void Server::send_snapshots(Clock::time_point now) {
   frame.far_every = config_.far_every;
   frame.archive = &snapshot_archive_;
   snapshot_receivers_.clear();
-  for (Session& s : sessions_.sessions())
-    snapshot_receivers_.push_back({static_cast<uint32_t>(roster_.index_of(s.avatar_id)), s.avatar_id, s.last_input_seq,
-                                   s.echo_client_time_ms, &s.endpoint, &s.sealer, &s.sent_views});
+  for (Session& s : sessions_.sessions()) {
+    const int index = roster_.index_of(s.avatar_id);  // every session has its avatar (on_join)
+    assert(index >= 0);
+    snapshot_receivers_.push_back({static_cast<uint32_t>(index), s.avatar_id, s.last_input_seq, s.echo_client_time_ms,
+                                   &s.endpoint, &s.sealer, &s.sent_views});
+  }
   // Clients in parallel on the look-ahead workers, each worker with its own builder and batch.
   workers_->run(static_cast<int>(snapshot_receivers_.size()), [this, &frame](int item, int worker) {
     snapshot_builders_[static_cast<size_t>(worker)]->serve(frame, snapshot_receivers_[static_cast<size_t>(item)],

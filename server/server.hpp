@@ -46,10 +46,8 @@
 #include <chrono>
 #include <deque>
 #include <memory>
-#include <optional>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace foresight::server {
