@@ -109,21 +109,22 @@ void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
 
 void PoseStage::adapt_to_ground(float dt_s) {
   if (library_.num_joints() <= kCanonRightToeEnd) return;
-  const auto height_at = [this](size_t joint, float& h) {
-    return terrain_height_at(*ground_, ground(shown_[joint]), h);
+  // The ground is read where each part will be shown: a locked foot (lock_foot, next) is moved on
+  // the ground plane so its held part stands where it is held, and its other parts with it.
+  vec2 lock_shift[2];
+  for (int foot = 0; foot < 2; ++foot) {
+    const FootLock& lock = feet_[foot];
+    lock_shift[foot] = lock.locked ? ground(lock.at) - ground(shown_[static_cast<size_t>(lock.joint)]) : vec2(0.0f);
+  }
+  const auto height_at = [this, &lock_shift](int foot, size_t joint, float& h) {
+    return terrain_height_at(*ground_, ground(shown_[joint]) + lock_shift[foot], h);
   };
   float target[2];
   for (int foot = 0; foot < 2; ++foot) {
     const auto heel = static_cast<size_t>(foot_heel_joint(foot)), ball = static_cast<size_t>(foot_ball_joint(foot));
     const bool heel_down = contact_ & foot_heel_bit(foot), ball_down = contact_ & foot_ball_bit(foot);
-    // A part held by its lock (lock_foot, next) stands where it is held.
-    const FootLock& lock = feet_[foot];
-    const auto held_at = [&](size_t joint, float& h) {
-      return lock.locked && lock.joint == static_cast<int>(joint) ? terrain_height_at(*ground_, ground(lock.at), h)
-                                                                   : height_at(joint, h);
-    };
     float gh = 0.0f, gb = 0.0f;
-    const bool has_heel = held_at(heel, gh), has_ball = held_at(ball, gb);
+    const bool has_heel = height_at(foot, heel, gh), has_ball = height_at(foot, ball, gb);
     target[foot] = foot_y_[foot];  // over a hole: where it was
     // Across a stair's edge (the ball's ground higher than the foot can pitch to, below) the foot
     // rests on the step with its heel hanging, as a foot on a stair does; otherwise on its heel.
@@ -155,7 +156,7 @@ void PoseStage::adapt_to_ground(float dt_s) {
     float from = foot_y_[foot];
     for (size_t part = ankle + 1; part <= toe; ++part) {
       float g = 0.0f;
-      if (!height_at(part, g)) break;
+      if (!height_at(foot, part, g)) break;
       const vec3 parent = shown_[part - 1];
       const float length = glm::length(shown_[part] - parent);
       const float rise = std::clamp(g - from, -0.5f * length, 0.5f * length);

@@ -318,6 +318,36 @@ TEST(PoseStage, AFootAcrossAStepEdgeRestsOnTheStep) {
   EXPECT_NEAR(glm::length(shown[b] - shown[h]), glm::length(animated[b] - animated[h]), 1e-3f);
 }
 
+// The ground is read where a locked foot is shown: the body drifts 5 cm forwards (less than a
+// lock lets go at), so the clip's left ball moves over a step's edge while the lock keeps the
+// foot on the floor. The ball stays on the floor, not pitched up towards the step it is not on.
+TEST(PoseStage, ALockedFootReadsTheGroundWhereItIsHeld) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PlaybackState s{idle, 0, Placement{}, -1};
+  PoseStage flat(lib);
+  const std::span<const vec3> played = flat.update(s, 0.0f);
+  const auto b = static_cast<size_t>(foot_ball_joint(0)), h = static_cast<size_t>(foot_heel_joint(0));
+  const vec3 ball = played[b];
+  Terrain edge;  // just ahead of the left ball, under the left foot only
+  edge.steps.push_back({"edge", vec3(ball.x - 0.1f, 0.0f, ball.z + 0.02f), vec3(ball.x + 0.1f, 0.15f, ball.z + 1.0f)});
+  PoseStage stage(lib);
+  stage.set_ground(&edge);
+  stage.update(s, 0.0f);
+  for (int f = 1; f <= 10; ++f) {
+    s.frame = f;
+    s.segment_start.pos_m.y = 0.005f * static_cast<float>(f);  // 5 cm in all
+    stage.update(s, 1.0f / 30.0f);
+  }
+  ASSERT_EQ(stage.contact() & (kLeftHeel | kLeftBall), kLeftHeel | kLeftBall);
+  const std::span<const vec3> shown = stage.shown(), animated = stage.animated();
+  ASSERT_GT(animated[b].z, ball.z + 0.03f) << "the clip's ball is over the step now";
+  EXPECT_LT(shown[b].z, ball.z + 0.01f) << "the lock holds the foot where it was";
+  EXPECT_NEAR(shown[b].y, animated[b].y, 0.005f) << "the ball on the floor it is held on";
+  EXPECT_NEAR(shown[h].y, animated[h].y, 0.005f);
+}
+
 // Ground adaptation on capture the team did not make (the Bandai walk in inches under a dummy
 // root): walked up a 20 % slope, its planted parts stand on the ground under them, where the
 // played ones sink into it by up to the slope's rise along the stride.
