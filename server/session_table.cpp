@@ -36,7 +36,6 @@ bool SessionTable::open(const std::string& bind_address, uint16_t port, const Se
                         std::string& error) {
   settings_ = settings;
   if (!socket_.open(bind_address, port, error)) return false;
-  receive_buffer_.resize(protocol::kMaxDatagramBytes + 1);
   sessions_.reserve(static_cast<size_t>(std::max(settings_.max_players, 0)));
   return true;
 }
@@ -45,20 +44,24 @@ bool SessionTable::open(const std::string& bind_address, uint16_t port, const Se
 // Receiving
 
 void SessionTable::receive(Clock::time_point now, SessionEvents& events) {
-  protocol::Endpoint from;
-  // Bounded: a flood cannot keep the tick in here (what is left waits for the next tick).
-  for (int budget = 20000; budget > 0; --budget) {
-    const ptrdiff_t n = socket_.receive(receive_buffer_, from);
-    if (n < 0) break;
-    ++counters_.packets_in;
-    counters_.bytes_in += static_cast<uint64_t>(n);
-    protocol::DropReason reason;
-    const wire::Packet* packet = protocol::packet_read({receive_buffer_.data(), static_cast<size_t>(n)}, reason);
-    if (packet == nullptr) {
-      counters_.drops.add(reason);
-      continue;
+  // Bounded: a flood cannot keep the tick in here (what is left waits for the next tick). Taken
+  // in recvmmsg batches: at 1000 players that is 1000 inputs a tick.
+  for (size_t budget = 20000; budget > 0;) {
+    const size_t taken = inbox_.receive(socket_);
+    for (size_t i = 0; i < taken; ++i) {
+      const std::span<const uint8_t> bytes = inbox_.datagram(i);
+      ++counters_.packets_in;
+      counters_.bytes_in += bytes.size();
+      protocol::DropReason reason;
+      const wire::Packet* packet = protocol::packet_read(bytes, reason);
+      if (packet == nullptr) {
+        counters_.drops.add(reason);
+        continue;
+      }
+      handle(inbox_.from(i), *packet, bytes.size(), now, events);
     }
-    handle(from, *packet, static_cast<size_t>(n), now, events);
+    if (taken < protocol::DatagramInbox::kCapacity) break;
+    budget -= std::min(budget, taken);
   }
 }
 

@@ -10,6 +10,7 @@
 #include "protocol/packet.hpp"
 #include "protocol/sent_views.hpp"
 #include "transport/cookie.hpp"
+#include "transport/datagram_batch.hpp"
 #include "transport/session_crypto.hpp"
 #include "transport/udp_socket.hpp"
 
@@ -132,7 +133,7 @@ class SessionTable {
   protocol::CookieJar cookies_;
   protocol::PacketWriter writer_;
   protocol::PacketWriter seal_writer_;  ///< The Sealed wrapping around what writer_ holds.
-  std::vector<uint8_t> receive_buffer_;
+  protocol::DatagramInbox inbox_;  ///< What receive() takes from the socket, a batch at a time.
   HandleTable<Session> sessions_;
   std::unordered_map<uint64_t, Handle> by_endpoint_;  ///< endpoint_key -> session
   /// Cookie-verified joins waiting their turn (at most max_players - players long).

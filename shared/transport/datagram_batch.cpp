@@ -47,6 +47,33 @@ void DatagramBatch::flush(UdpSocket& socket) {
   count_ = 0;
 }
 
+size_t DatagramInbox::receive(UdpSocket& socket) {
+  const int fd = socket.native_handle();
+  if (fd < 0) return 0;
+  for (size_t i = 0; i < kCapacity; ++i) {
+    iov_[i] = {payload_[i].data(), payload_[i].size()};
+    msghdr& h = headers_[i].msg_hdr;
+    h = msghdr{};
+    h.msg_name = from_[i].data();
+    h.msg_namelen = static_cast<socklen_t>(from_[i].capacity());
+    h.msg_iov = &iov_[i];
+    h.msg_iovlen = 1;
+  }
+  int n;
+  do {
+    n = ::recvmmsg(fd, headers_.data(), static_cast<unsigned>(kCapacity), MSG_DONTWAIT, nullptr);
+  } while (n < 0 && errno == EINTR);
+  if (n <= 0) return 0;  // nothing waiting (EAGAIN), or an error the next call will see again
+  for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
+    from_[i].resize(headers_[i].msg_hdr.msg_namelen);
+    // A datagram longer than the buffer is cut to it and flagged: reported one byte over the
+    // limit, so the packet reader refuses it as too large instead of reading a cut message.
+    const bool cut = (headers_[i].msg_hdr.msg_flags & MSG_TRUNC) != 0;
+    sizes_[i] = cut ? kMaxDatagramBytes + 1 : std::min<size_t>(headers_[i].msg_len, kMaxDatagramBytes + 1);
+  }
+  return static_cast<size_t>(n);
+}
+
 DatagramBatch::Counts DatagramBatch::take_counts() {
   const Counts c = counts_;
   counts_ = {};

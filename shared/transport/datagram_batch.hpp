@@ -1,8 +1,8 @@
 #pragma once
-// Datagrams gathered and sent together with sendmmsg(2): one system call for up to kCapacity
-// datagrams instead of one each (the server's snapshot phase sends one or more a client a
-// snapshot). Each thread keeps its own batch; the socket's descriptor may be written from
-// several threads at once.
+// Datagrams sent and received in batches: sendmmsg(2) and recvmmsg(2), one system call for up to
+// kCapacity datagrams instead of one each (the server sends one or more datagrams a client a
+// snapshot, and receives 30 inputs a second from each). Each thread keeps its own batch; the
+// socket's descriptor may be written from several threads at once.
 #include "protocol/packet.hpp"
 #include "transport/udp_socket.hpp"
 
@@ -36,6 +36,27 @@ class DatagramBatch {
   std::array<mmsghdr, kCapacity> headers_{};
   size_t count_ = 0;
   Counts counts_;
+};
+
+/// The receiving side: what is waiting on the socket, taken in one recvmmsg(2).
+class DatagramInbox {
+ public:
+  static constexpr size_t kCapacity = 64;
+
+  /// Takes the datagrams waiting (at most kCapacity; never waits). Returns how many.
+  size_t receive(UdpSocket& socket);
+  /// The i-th datagram taken (i < what receive() returned): its bytes, kMaxDatagramBytes + 1 of
+  /// them when it was longer than kMaxDatagramBytes (as UdpSocket::receive reports one), and its
+  /// sender.
+  std::span<const uint8_t> datagram(size_t i) const { return {payload_[i].data(), sizes_[i]}; }
+  const Endpoint& from(size_t i) const { return from_[i]; }
+
+ private:
+  std::array<std::array<uint8_t, kMaxDatagramBytes + 1>, kCapacity> payload_{};
+  std::array<size_t, kCapacity> sizes_{};
+  std::array<Endpoint, kCapacity> from_{};
+  std::array<iovec, kCapacity> iov_{};
+  std::array<mmsghdr, kCapacity> headers_{};
 };
 
 }  // namespace foresight::protocol

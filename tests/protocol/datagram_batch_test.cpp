@@ -78,3 +78,39 @@ TEST(DatagramBatch, WhatCannotBeSentIsCountedAndTheRestStillGoes) {
 
 }  // namespace
 }  // namespace foresight::protocol
+
+namespace foresight::protocol {
+namespace {
+
+// The receiving side: recvmmsg batches take every waiting datagram whole, in order, with its
+// sender, past a full batch; one longer than the limit is reported one byte over it (so the packet
+// reader refuses it as too large), exactly as UdpSocket::receive reports it.
+TEST(DatagramInbox, TakesEveryDatagramWithItsSenderAndFlagsAnOversizedOne) {
+  UdpSocket receiver, a, b;
+  for (UdpSocket* s : {&receiver, &a, &b}) {
+    std::string error;
+    ASSERT_TRUE(s->open("127.0.0.1", 0, error)) << error;
+  }
+  const Endpoint to(asio::ip::make_address("127.0.0.1"), receiver.local_port());
+  const size_t count = DatagramInbox::kCapacity + 10;
+  for (size_t i = 0; i < count; ++i) {
+    const size_t size = i == 7 ? kMaxDatagramBytes + 300 : 1 + (i * 53) % kMaxDatagramBytes;
+    ASSERT_TRUE((i % 2 ? b : a).send(std::vector<uint8_t>(size, static_cast<uint8_t>(i)), to));
+  }
+  DatagramInbox inbox;
+  std::vector<std::pair<std::vector<uint8_t>, uint16_t>> got;
+  for (size_t n; (n = inbox.receive(receiver)) > 0;)
+    for (size_t i = 0; i < n; ++i)
+      got.emplace_back(std::vector<uint8_t>(inbox.datagram(i).begin(), inbox.datagram(i).end()), inbox.from(i).port());
+  ASSERT_EQ(got.size(), count);
+  for (size_t i = 0; i < count; ++i) {
+    const size_t expected = i == 7 ? kMaxDatagramBytes + 1 : 1 + (i * 53) % kMaxDatagramBytes;
+    EXPECT_EQ(got[i].first.size(), expected) << i;
+    EXPECT_EQ(got[i].first.front(), static_cast<uint8_t>(i)) << i;
+    EXPECT_EQ(got[i].second, (i % 2 ? b : a).local_port()) << i;
+  }
+  EXPECT_EQ(inbox.receive(receiver), 0u) << "nothing left, and no wait";
+}
+
+}  // namespace
+}  // namespace foresight::protocol
