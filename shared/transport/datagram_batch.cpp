@@ -51,7 +51,7 @@ size_t DatagramInbox::receive(UdpSocket& socket) {
   const int fd = socket.native_handle();
   if (fd < 0) return 0;
   for (size_t i = 0; i < kCapacity; ++i) {
-    iov_[i] = {payload_[i].data(), payload_[i].size()};
+    iov_[i] = {payload_[i].bytes.data(), payload_[i].bytes.size()};
     msghdr& h = headers_[i].msg_hdr;
     h = msghdr{};
     h.msg_name = from_[i].data();

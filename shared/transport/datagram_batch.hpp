@@ -48,11 +48,16 @@ class DatagramInbox {
   /// The i-th datagram taken (i < what receive() returned): its bytes, kMaxDatagramBytes + 1 of
   /// them when it was longer than kMaxDatagramBytes (as UdpSocket::receive reports one), and its
   /// sender.
-  std::span<const uint8_t> datagram(size_t i) const { return {payload_[i].data(), sizes_[i]}; }
+  std::span<const uint8_t> datagram(size_t i) const { return {payload_[i].bytes.data(), sizes_[i]}; }
   const Endpoint& from(size_t i) const { return from_[i]; }
 
  private:
-  std::array<std::array<uint8_t, kMaxDatagramBytes + 1>, kCapacity> payload_{};
+  // Each buffer starts 16-byte aligned, as the packet reader's FlatBuffers want (a row of
+  // kMaxDatagramBytes + 1 bytes would put every other one at an odd address).
+  struct alignas(16) Buffer {
+    std::array<uint8_t, kMaxDatagramBytes + 1> bytes;
+  };
+  std::array<Buffer, kCapacity> payload_{};
   std::array<size_t, kCapacity> sizes_{};
   std::array<Endpoint, kCapacity> from_{};
   std::array<iovec, kCapacity> iov_{};
