@@ -167,6 +167,8 @@ class Server : private SessionEvents {
   MotionLibrary library_;
   Scene scene_;
   CollisionWorld world_;
+  /// Every avatar's motion-tree nodes, in chunks (before the avatars: they give them back).
+  MotionNodePool node_pool_;
   MotionTreeConfig tree_config_;
   int spawn_segment_ = -1;
   /// Places near the scene's spawns where the standing body fits the scene, nearest first: a
@@ -190,9 +192,6 @@ class Server : private SessionEvents {
   HandleTable<TerrainWalker> terrain_walkers_;
   HandleTable<Fighter> fighters_;
   Roster roster_;
-  /// Trees of avatars that left: freeing one returns about 0.6 MB to the system (~0.2 ms), so a
-  /// crowd leaving at once would stall the tick; finish_tick releases a few a tick.
-  std::vector<std::unique_ptr<LookaheadAvatar>> retired_;
   Reservations reservations_;
   std::vector<wire::AvatarState> snapshot_states_;  ///< Reused every snapshot.
   // Fighters' poses and strike events for the snapshot being sent (server_fighters.cpp); reused.

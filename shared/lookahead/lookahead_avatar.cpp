@@ -59,7 +59,7 @@ LookaheadAvatar::LookaheadAvatar(const MotionLibrary& library, const CollisionWo
   for (size_t s = 0; s < n; ++s)
     for (const Transition& t : library.graph.successors(static_cast<int>(s)))
       if (standing_loop_[static_cast<size_t>(t.to)]) ends_standing_[s] = 1;
-  traps_.reserve(library.graph.transitions.size());
+  traps_.reserve(64);  // the root's children: a segment's successors (grows once for a bushier graph)
 }
 
 void LookaheadAvatar::set_input(const ControlInput& input) {
@@ -266,18 +266,19 @@ bool LookaheadAvatar::may_end_early() const {
 // the scene where no motion but a standing loop fits. Taken, the avatar stands there for ever.
 void LookaheadAvatar::find_traps() {
   traps_.clear();
+  thread_local std::vector<int> visit;  // the thread's scratch stack (capacity kept)
   const MotionTree& t = tree_;
   for (int c = t.node(t.root()).first_child; c >= 0; c = t.node(c).next_sibling) {
     if (is_standing_loop(t.node(c).segment)) continue;  // standing where it is, not going anywhere
     bool trap = true;
-    visit_.clear();
-    visit_.push_back(c);
-    while (trap && !visit_.empty()) {
-      const int i = visit_.back();
-      visit_.pop_back();
+    visit.clear();
+    visit.push_back(c);
+    while (trap && !visit.empty()) {
+      const int i = visit.back();
+      visit.pop_back();
       const MotionTreeNode& n = t.node(i);
       if ((i != c && !is_standing_loop(n.segment)) || (!n.expanded && n.depth < t.config().max_depth)) trap = false;
-      for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) visit_.push_back(k);
+      for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) visit.push_back(k);
     }
     if (trap) traps_.push_back(t.node(c).segment);
   }

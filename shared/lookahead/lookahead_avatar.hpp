@@ -127,7 +127,6 @@ class LookaheadAvatar {
   std::vector<uint8_t> standing_loop_;  ///< Per graph segment: a held pose that goes nowhere.
   std::vector<uint8_t> ends_standing_;  ///< Per graph segment: a standing loop may follow it.
   std::vector<int> traps_;              ///< find_traps(): segments of the root's trap children.
-  std::vector<int> visit_;              ///< Scratch stack (grows to the largest tree, then kept).
 };
 
 /// The idle segment a library falls back to: tagged idle (not fight), crouching or not as asked,

@@ -6,134 +6,111 @@
 
 namespace foresight {
 
+namespace {
+
+// Per-thread scratch (capacity kept): trees are worked on by one thread at a time, and keeping
+// these per tree cost every avatar ~10 KB.
+struct RankedChild {
+  int64_t sum;  ///< RootChildSum::sum.
+  uint32_t order;
+  int node;
+};
+thread_local std::vector<RankedChild> t_ranked;
+thread_local std::vector<std::pair<int, int>> t_branch_stack;  // refresh_priorities: node, root_sums_ slot
+thread_local std::vector<int32_t> t_new_index;                 // compact(): old index -> new
+thread_local std::vector<int32_t> t_live;                      // compact(): live nodes in preorder
+thread_local std::vector<int> t_walk_stack;
+
+}  // namespace
+
+std::vector<int>& MotionTree::walk_stack() { return t_walk_stack; }
+
 MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world,
                        MotionTreeConfig config)
     : library_(library), world_(world), config_(std::move(config)) {
   config_.max_nodes = std::max(config_.max_nodes, 2);
-  config_.max_depth = std::clamp(config_.max_depth, 1, 65535);
-  reserve_nodes(std::min(config_.max_nodes, kInitialNodes));
-  ranked_.reserve(64);  // a segment's successors; grows once if a graph has more
-  ranked_nodes_.reserve(64);
+  config_.max_depth = std::clamp(config_.max_depth, 1, 255);
+  if (config_.node_pool == nullptr) own_pool_ = std::make_unique<MotionNodePool>();
+  pool_ = config_.node_pool != nullptr ? config_.node_pool : own_pool_.get();
+  ranked_nodes_.reserve(64);  // a segment's successors; grows once if a graph has more
   root_sums_.reserve(64);
-  branch_stack_.reserve(1024);  // depth x branching; grows (once) only for an unusually bushy tree
   if (!library_.clips.empty()) segment_fps_ = library_.clips.front().fps;
   reset(0, Placement{});
 }
 
+MotionTree::~MotionTree() { give_back_chunks_from(0); }
+
+void MotionTree::give_back_chunks_from(size_t first) {
+  if (first >= chunks_.size()) return;
+  pool_->give_back(std::span(chunks_).subspan(first));
+  chunks_.resize(first);
+}
+
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
-  // Nothing survives a reset, so a pool that has been far too large for a while is simply
-  // replaced (no nodes to move).
-  if (shrink_due(/*reroot=*/false)) {
-    const auto capacity = static_cast<size_t>(shrunk_capacity());
-    adopt_storage(std::vector<MotionTreeNode>(capacity), std::vector<uint32_t>(capacity));
-  }
+  // Nothing survives a reset. The tree keeps the chunks it had filled (it is likely to grow as
+  // far again: steering resets a tree every steered frame) and gives back the rest.
+  if (config_.shrink_pool) give_back_chunks_from(static_cast<size_t>(std::max(1, chunks_for(num_nodes_))));
   priorities_stale_ = false;
   root_sums_.clear();  // the root alone: no branches
   sums_valid_ = true;
-  // O(1): steering resets a tree every steered frame. Nodes come from the free list, then from
-  // the never-used part of the pool; in the same order as a list of every node would give them.
+  // O(1): nodes come from the free list, then from the never-used part of the chunks; in the
+  // same order as a list of every node would give them.
   free_head_ = -1;
   first_unused_ = 0;
   num_nodes_ = 0;
   next_order_ = 0;
   queue_.clear();
   root_ = allocate();
-  MotionTreeNode& r = nodes_[static_cast<size_t>(root_)];
+  MotionTreeNode& r = at(root_);
   r.start = start;
   r.end_pos_m = start.compose(library_.segment_motion[segment].end).pos_m;
   r.segment = segment;
   r.transition = incoming_transition;
   r.grow_priority = 1.0f;
   r.match = 1.0f;
-  queue_.push_back({r.grow_priority, order_[static_cast<size_t>(root_)], root_});
+  queue_.push_back({r.grow_priority, r.order, root_});
 }
 
-void MotionTree::reserve_nodes(int n) {
-  // Exactly n: a resize would let the vector choose (twice the old size).
-  const size_t size = static_cast<size_t>(n);
-  std::vector<MotionTreeNode> nodes(size);
-  std::vector<uint32_t> order(size);
-  std::copy(nodes_.begin(), nodes_.end(), nodes.begin());
-  std::copy(order_.begin(), order_.end(), order.begin());
-  nodes_.swap(nodes);
-  order_.swap(order);
-  queue_.reserve(size);  // the walk stack grows on its own: it holds far fewer than the nodes
-}
-
-// Memory follows the work both ways: the pool grows by half as the budget pays for nodes, and once
-// the tree has stayed at two thirds of it or less (at every re-root and reset) for
-// kShrinkCheckReroots re-roots (several seconds of play) it is cut to that peak and an eighth.
-// Counting re-roots, not resets: steering resets a tree every steered frame, and a window of
-// frames let pools shrink and grow back several times a second (copies and allocator churn). Without this, every avatar kept the largest tree it ever
-// had: players joining an empty server get the whole budget and fill 8192 nodes in their first
-// second, and kept 590 KB each after the server filled up and their trees held 400.
-bool MotionTree::shrink_due(bool reroot) {
-  peak_nodes_ = std::max(peak_nodes_, num_nodes_);
-  if (reroot) ++reroots_since_check_;
-  if (reroots_since_check_ < kShrinkCheckReroots) return false;
-  const bool due = config_.shrink_pool && node_capacity() > kInitialNodes && 3 * peak_nodes_ <= 2 * node_capacity();
-  if (!due) {  // the next window starts now (a due shrink starts it in adopt_storage)
-    reroots_since_check_ = 0;
-    peak_nodes_ = num_nodes_;
-  }
-  return due;
-}
-
-int MotionTree::shrunk_capacity() const {
-  // An eighth over the peak (in whole 64-node steps), so a tree that keeps its size does not grow
-  // again at once.
-  const int wanted = (peak_nodes_ + peak_nodes_ / 8 + 64) / 64 * 64;
-  return std::clamp(wanted, kInitialNodes, config_.max_nodes);
-}
-
-void MotionTree::adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<uint32_t> order) {
-  // Fresh vectors (a resize would keep the old capacity): the old ones are freed here.
-  const size_t capacity = nodes.size();
-  nodes_.swap(nodes);
-  order_.swap(order);
-  std::vector<QueueEntry>().swap(queue_);
-  std::vector<int>().swap(visit_stack_);
-  queue_.reserve(capacity);
-  reroots_since_check_ = 0;
-  peak_nodes_ = 0;
-}
-
-void MotionTree::compact(int capacity) {
-  // The live nodes in preorder from the root get indices 0..n-1; links are renumbered, creation
-  // orders kept (ties are broken by them, never by index, so the tree behaves exactly as before).
-  std::vector<int32_t> new_index(nodes_.size(), -1);
-  std::vector<int32_t> live;
-  live.reserve(static_cast<size_t>(num_nodes_));
-  visit_stack_.clear();
-  visit_stack_.push_back(root_);
-  while (!visit_stack_.empty()) {
-    const int n = visit_stack_.back();
-    visit_stack_.pop_back();
+// Memory follows the work down as well as up: after a re-root that freed two chunks' worth of
+// nodes or more (most re-roots free the branches not taken, over half the tree), the live nodes
+// in preorder from the root get indices 0..n-1 in as few chunks as they need, and the rest go
+// back to the pool. Links are renumbered, creation orders kept (ties are broken by them, never by
+// index, so the tree behaves exactly as before). O(live nodes), once per re-root at most.
+void MotionTree::compact() {
+  std::vector<int32_t>& new_index = t_new_index;
+  std::vector<int32_t>& live = t_live;
+  new_index.assign(static_cast<size_t>(node_capacity()), -1);
+  live.clear();
+  for_each_node([&](int n, const MotionTreeNode&) {
     new_index[static_cast<size_t>(n)] = static_cast<int32_t>(live.size());
     live.push_back(n);
-    for (int c = nodes_[static_cast<size_t>(n)].first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
-      visit_stack_.push_back(c);
-  }
+  });
   const auto renumber = [&](int32_t i) { return i < 0 ? i : new_index[static_cast<size_t>(i)]; };
-  std::vector<MotionTreeNode> nodes(static_cast<size_t>(capacity));
-  std::vector<uint32_t> order(static_cast<size_t>(capacity));
-  for (size_t k = 0; k < live.size(); ++k) {
-    MotionTreeNode n = nodes_[static_cast<size_t>(live[k])];
+  const int count = static_cast<int>(live.size());
+  const size_t old_chunks = chunks_.size();
+  for (int c = 0; c < chunks_for(count); ++c) chunks_.push_back(pool_->take());
+  // New node k lives in chunk old_chunks + k / 64 until the old chunks are given back.
+  for (int k = 0; k < count; ++k) {
+    MotionTreeNode n = at(live[static_cast<size_t>(k)]);
     n.parent = renumber(n.parent);
     n.first_child = renumber(n.first_child);
     n.next_sibling = renumber(n.next_sibling);
-    nodes[k] = n;
-    order[k] = order_[static_cast<size_t>(live[k])];
+    at(static_cast<int>(old_chunks) * MotionNodePool::kChunkNodes + k) = n;
   }
-  const int root = new_index[static_cast<size_t>(root_)];
-  const int count = static_cast<int>(live.size());
-  adopt_storage(std::move(nodes), std::move(order));
-  root_ = root;
+  pool_->give_back(std::span(chunks_).first(old_chunks));
+  chunks_.erase(chunks_.begin(), chunks_.begin() + static_cast<std::ptrdiff_t>(old_chunks));
+  root_ = new_index[static_cast<size_t>(root_)];
   free_head_ = -1;
   first_unused_ = count;
-  // The leaf queue (emptied above) and the branch sums named old indices: advance_root left them
-  // stale, and they are rebuilt from the tree before their next use.
+  // The leaf queue and the branch sums named old indices: advance_root left them stale, and they
+  // are rebuilt from the tree before their next use. A queue far larger than the tree is cut.
   assert(priorities_stale_ && !sums_valid_);
+  queue_.clear();
+  if (queue_.capacity() > 2 * static_cast<size_t>(count) + 64) {
+    std::vector<QueueEntry> smaller;
+    smaller.reserve(static_cast<size_t>(count) + 64);
+    queue_.swap(smaller);
+  }
   root_sums_.clear();
 }
 
@@ -141,32 +118,31 @@ int MotionTree::allocate() {
   int i = first_unused_;
   if (free_head_ >= 0) {
     i = free_head_;
-    free_head_ = nodes_[static_cast<size_t>(i)].next_sibling;
+    free_head_ = at(i).next_sibling;
   } else {
     assert(first_unused_ < config_.max_nodes);
-    // The storage grows by half when the budget pays for more nodes than it holds (a few times in
-    // an avatar's life, never per node); no reference into nodes_ is held across allocate().
-    if (first_unused_ == static_cast<int>(nodes_.size()))
-      reserve_nodes(std::min(config_.max_nodes, first_unused_ + std::max(first_unused_ / 2, 64)));
+    // One chunk more when the budget pays for more nodes than the tree holds (once per 64 nodes,
+    // never per node); chunks never move, so references into other chunks stay valid.
+    if (first_unused_ == node_capacity()) chunks_.push_back(pool_->take());
     ++first_unused_;
   }
-  MotionTreeNode& n = nodes_[static_cast<size_t>(i)];
+  MotionTreeNode& n = at(i);
   n = MotionTreeNode{};
-  order_[static_cast<size_t>(i)] = next_order_++;
+  n.order = next_order_++;
   ++num_nodes_;
   return i;
 }
 
 void MotionTree::free_subtree(int index) {
   // Iterative: a long chain must not recurse once per node.
-  visit_stack_.clear();
-  visit_stack_.push_back(index);
-  while (!visit_stack_.empty()) {
-    const int n = visit_stack_.back();
-    visit_stack_.pop_back();
-    MotionTreeNode& node = nodes_[static_cast<size_t>(n)];
-    for (int c = node.first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
-      visit_stack_.push_back(c);
+  std::vector<int>& stack = walk_stack();
+  const size_t base = stack.size();
+  stack.push_back(index);
+  while (stack.size() > base) {
+    const int n = stack.back();
+    stack.pop_back();
+    MotionTreeNode& node = at(n);
+    for (int c = node.first_child; c >= 0; c = at(c).next_sibling) stack.push_back(c);
     node.segment = -1;
     node.next_sibling = free_head_;
     free_head_ = n;
@@ -256,18 +232,19 @@ void MotionTree::refresh_priorities() {
   // Depth-first from the root visits every parent before its children; the same pass sums each
   // of the root's branches again (4.3).
   root_sums_.clear();
-  branch_stack_.clear();
-  branch_stack_.push_back({root_, -1});
-  while (!branch_stack_.empty()) {
-    const auto [index, slot_in] = branch_stack_.back();
-    branch_stack_.pop_back();
-    MotionTreeNode& node = nodes_[static_cast<size_t>(index)];
+  std::vector<std::pair<int, int>>& branch_stack = t_branch_stack;
+  branch_stack.clear();
+  branch_stack.push_back({root_, -1});
+  while (!branch_stack.empty()) {
+    const auto [index, slot_in] = branch_stack.back();
+    branch_stack.pop_back();
+    MotionTreeNode& node = at(index);
     int slot = slot_in;
     if (node.parent < 0) {
       node.match = 1.0f;
       if (resort) node.grow_priority = 1.0f;
     } else {
-      const MotionTreeNode& p = nodes_[static_cast<size_t>(node.parent)];
+      const MotionTreeNode& p = at(node.parent);
       node.match = p.match * base_match(node);
       if (resort) node.grow_priority = grow_priority_of(node, p.grow_priority);
       if (slot < 0) {  // a child of the root: its own branch
@@ -276,8 +253,7 @@ void MotionTree::refresh_priorities() {
       }
       root_sums_[static_cast<size_t>(slot)].sum += branch_weight(w, node);
     }
-    for (int c = node.first_child; c >= 0; c = nodes_[static_cast<size_t>(c)].next_sibling)
-      branch_stack_.push_back({c, slot});
+    for (int c = node.first_child; c >= 0; c = at(c).next_sibling) branch_stack.push_back({c, slot});
   }
   sums_valid_ = true;
 }
@@ -286,7 +262,7 @@ void MotionTree::rebuild_queue() {
   queue_.clear();
   for_each_node([&](int index, const MotionTreeNode& n) {
     if (!n.expanded && n.depth < config_.max_depth)
-      queue_.push_back({n.grow_priority, order_[static_cast<size_t>(index)], index});
+      queue_.push_back({n.grow_priority, n.order, index});
   });
   std::make_heap(queue_.begin(), queue_.end(), queue_less);
 }
@@ -307,7 +283,7 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       break;
     }
     const QueueEntry best = queue_.front();
-    const MotionTreeNode& leaf = nodes_[static_cast<size_t>(best.node)];
+    const MotionTreeNode& leaf = at(best.node);
     const auto successors = library_.graph.successors(leaf.segment);
     // Expand a leaf whole or not at all, so a full pool never leaves it half expanded.
     if (static_cast<int>(successors.size()) > config_.max_nodes - num_nodes_) {
@@ -332,8 +308,8 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       result.frame_checks += static_cast<int64_t>(stats.frame_checks);
       if (!feasible) continue;
       const int child = allocate();
-      MotionTreeNode& parent = nodes_[static_cast<size_t>(leaf_index)];
-      MotionTreeNode& c = nodes_[static_cast<size_t>(child)];
+      MotionTreeNode& parent = at(leaf_index);
+      MotionTreeNode& c = at(child);
       c.start = place;
       c.end_pos_m = place.compose(library_.segment_motion[segment].end).pos_m;
       c.segment = segment;
@@ -351,11 +327,11 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
         else root_sums_[static_cast<size_t>(branch_slot)].sum += weighted;
       }
       if (c.depth < config_.max_depth) {
-        queue_.push_back({c.grow_priority, order_[static_cast<size_t>(child)], child});
+        queue_.push_back({c.grow_priority, c.order, child});
         std::push_heap(queue_.begin(), queue_.end(), queue_less);
       }
     }
-    nodes_[static_cast<size_t>(leaf_index)].expanded = 1;
+    at(leaf_index).expanded = 1;
   }
   return result;
 }
@@ -371,7 +347,7 @@ int64_t MotionTree::branch_weight(const std::array<float, 8>& w, const MotionTre
 // The root_sums_ entry of the root's child whose branch holds `index` (-1 for the root itself).
 int MotionTree::branch_slot_of(int index) const {
   if (index == root_) return -1;
-  while (nodes_[static_cast<size_t>(index)].parent != root_) index = nodes_[static_cast<size_t>(index)].parent;
+  while (at(index).parent != root_) index = at(index).parent;
   for (size_t i = 0; i < root_sums_.size(); ++i)
     if (root_sums_[i].node == index) return static_cast<int>(i);
   assert(false && "every child of the root has a branch sum");
@@ -384,13 +360,14 @@ std::span<const int> MotionTree::ranked_children() {
   // (refresh_priorities): ranking is then a sort of the root's few children, every frame.
   update_priorities_if_stale();
   assert(sums_valid_ && "only advance_root() invalidates them, and it leaves the priorities stale");
-  ranked_.clear();
-  for (const RootChildSum& r : root_sums_) ranked_.push_back({r.sum, order_[static_cast<size_t>(r.node)], r.node});
-  std::sort(ranked_.begin(), ranked_.end(), [](const RankedChild& a, const RankedChild& b) {
+  std::vector<RankedChild>& ranked = t_ranked;
+  ranked.clear();
+  for (const RootChildSum& r : root_sums_) ranked.push_back({r.sum, at(r.node).order, r.node});
+  std::sort(ranked.begin(), ranked.end(), [](const RankedChild& a, const RankedChild& b) {
     return a.sum > b.sum || (a.sum == b.sum && a.order < b.order);
   });
   ranked_nodes_.clear();
-  for (const RankedChild& r : ranked_) ranked_nodes_.push_back(r.node);
+  for (const RankedChild& r : ranked) ranked_nodes_.push_back(r.node);
   return ranked_nodes_;
 }
 
@@ -398,33 +375,33 @@ int MotionTree::select_child(const ChildVeto* veto) {
   // The veto (a reservation check of every frame, on the server) is asked best first, so only
   // the children better than the one taken are checked.
   for (const int c : ranked_children()) {
-    const MotionTreeNode& n = nodes_[static_cast<size_t>(c)];
+    const MotionTreeNode& n = at(c);
     if (veto == nullptr || !veto->blocks(n.segment, n.start)) return c;
   }
   return -1;
 }
 
 int MotionTree::advance_root(int child) {
-  assert(child >= 0 && nodes_[static_cast<size_t>(child)].parent == root_);
-  MotionTreeNode& old_root = nodes_[static_cast<size_t>(root_)];
+  assert(child >= 0 && at(child).parent == root_);
+  MotionTreeNode& old_root = at(root_);
   int c = old_root.first_child;
   while (c >= 0) {
-    const int next = nodes_[static_cast<size_t>(c)].next_sibling;
+    const int next = at(c).next_sibling;
     if (c != child) free_subtree(c);
     c = next;
   }
   old_root.first_child = -1;
   free_subtree(root_);
   root_ = child;
-  MotionTreeNode& r = nodes_[static_cast<size_t>(root_)];
+  MotionTreeNode& r = at(root_);
   r.parent = -1;
   r.next_sibling = -1;
   // Depths are relative to the root, so the depth cap keeps looking the same distance ahead.
-  for_each_node([&](int index, const MotionTreeNode&) { --nodes_[static_cast<size_t>(index)].depth; });
+  for_each_node([&](int index, const MotionTreeNode&) { --at(index).depth; });
   priorities_stale_ = true;
   sums_valid_ = false;
   const int transition = r.transition;
-  if (shrink_due(/*reroot=*/true)) compact(shrunk_capacity());
+  if (config_.shrink_pool && static_cast<int>(chunks_.size()) - chunks_for(num_nodes_) >= 2) compact();
   return transition;
 }
 

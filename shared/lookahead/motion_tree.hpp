@@ -7,15 +7,18 @@
 // playing segment ends, advance_root() picks the child whose branch has the largest weighted sum
 // of priorities (4.3); the root moves down and the sibling subtrees are freed (Fig. 4).
 //
-// Memory: nodes live in a pool with a free list and the leaf queue is a heap over a vector. The
-// pool starts at kInitialNodes and grows by half when the budget pays for more nodes than it
-// holds, up to max_nodes; a pool that stays at most two thirds full for a while is cut back (compact(): the
-// live nodes renumbered into a smaller pool at a re-root). So a tree's memory follows the nodes
-// its budget pays for (about 400 at 200 players, rather than a pool of 8192 for everyone).
-// Nothing is allocated per node: only these few resizes.
+// Memory: nodes live in chunks of 64 taken from a MotionNodePool (one shared by every avatar of a
+// server, or the tree's own) with a free list, and the leaf queue is a heap over a vector. A tree
+// takes a chunk when its budget pays for more nodes than it holds, up to max_nodes; when a re-root
+// frees two chunks' worth or more, the live nodes are renumbered into as few chunks as they need
+// (compact()) and the rest go back to the pool, and a reset keeps only the chunks the tree had
+// filled. So the trees' memory follows the nodes their budgets pay for, summed over the avatars.
+// Nothing is allocated per node: a chunk is taken per 64 nodes.
 // Determinism: the same inputs and the same expansion budget give the same tree, bit for bit
 // (ties are broken by the order nodes were created).
 #include "library/motion_library.hpp"
+#include "lookahead/motion_node_pool.hpp"
+#include "lookahead/motion_tree_node.hpp"
 #include "lookahead/strategy.hpp"
 #include "lookahead/transition_statistics.hpp"
 #include "world/collision_check.hpp"
@@ -24,16 +27,21 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace foresight {
 
 struct MotionTreeConfig {
-  int max_nodes = 8192;        ///< Nodes at most (the pool grows to this). [Limit: >= 2]
-  /// false: the pool only grows (a test compares a shrinking tree with one that keeps its pool).
+  int max_nodes = 8192;        ///< Nodes at most (the tree's storage grows to this). [Limit: >= 2]
+  /// Where the tree's node chunks come from: the server's pool, shared by its avatars. nullptr:
+  /// the tree makes its own (tests, benches, one avatar alone).
+  MotionNodePool* node_pool = nullptr;
+  /// false: the tree only takes chunks, never gives them back or renumbers its nodes (a test
+  /// compares a tree that does with one that does not).
   bool shrink_pool = true;
-  int max_depth = 8;           ///< Root is depth 0; nodes deeper than this are never created.
+  int max_depth = 8;           ///< Root is depth 0; nodes deeper than this are never created. [1, 255]
   Strategy strategy = Strategy::kCommand;
   /// Weight of a node at depth d (1-based below the root) in the branch sum of 4.3; decreasing.
   /// Depths past the end use the last weight.
@@ -96,21 +104,6 @@ struct GrowResult {
   int64_t frame_checks = 0;  ///< Body frames tested against the scene.
 };
 
-/// One node, 48 bytes. Indices, not pointers: the pool may be copied.
-struct MotionTreeNode {
-  Placement start;          ///< World placement where the segment starts.
-  vec2 end_pos_m{0.0f};     ///< World ground position where it ends (for v_k and drawing).
-  float grow_priority = 0;  ///< Heap key (strategy dependent; breadth-first: -depth).
-  float match = 1;          ///< Product of command-matching base priorities from the root.
-  int32_t segment = -1;
-  int32_t transition = -1;  ///< Graph transition from the parent's segment (-1 for the root).
-  int32_t parent = -1;
-  int32_t first_child = -1;
-  int32_t next_sibling = -1;  ///< Also links the free list.
-  uint16_t depth = 0;
-  uint16_t expanded = 0;    ///< 1 once its successors were placed.
-};
-
 /// A last word at decision time on a child the tree would pick (the server vetoes motions that
 /// would run into other avatars' committed motion: lookahead/reservations.hpp).
 class ChildVeto {
@@ -124,6 +117,9 @@ class ChildVeto {
 class MotionTree {
  public:
   MotionTree(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config);
+  MotionTree(const MotionTree&) = delete;
+  MotionTree& operator=(const MotionTree&) = delete;
+  ~MotionTree();  ///< Gives every chunk back to the pool.
 
   /// Drops every node and makes (segment at start) the root, entered by `incoming_transition`.
   void reset(int segment, const Placement& start, int incoming_transition = -1);
@@ -140,7 +136,7 @@ class MotionTree {
   /// Switches the exploration strategy at run time: the tree keeps its root (the segment playing)
   /// and regrows under the new priorities.
   void set_strategy(Strategy strategy) {
-    const MotionTreeNode root = nodes_[static_cast<size_t>(root_)];
+    const MotionTreeNode root = at(root_);
     config_.strategy = strategy;
     reset(root.segment, root.start, root.transition);
   }
@@ -167,17 +163,18 @@ class MotionTree {
   /// brought up to date lazily, by the next set_command(), grow() or select_child(): the server
   /// decides for every avatar in one sequential pass and grows them on several threads, and this
   /// puts the re-prioritising on those threads. The result is the same as doing it here.
+  /// Node indices held across it are void: the live nodes may be renumbered into fewer chunks.
   int advance_root(int child);
 
   int root() const { return root_; }
-  const MotionTreeNode& node(int index) const { return nodes_[static_cast<size_t>(index)]; }
+  const MotionTreeNode& node(int index) const { return at(index); }
   int num_nodes() const { return num_nodes_; }
-  /// Nodes the pool holds now (node indices are below it); grows up to config().max_nodes.
-  int node_capacity() const { return static_cast<int>(nodes_.size()); }
-  /// Bytes of node storage (the pool, creation orders, leaf queue and walk stack).
+  /// Nodes the tree's chunks hold now (node indices are below it): whole chunks, up to the
+  /// chunk that holds config().max_nodes.
+  int node_capacity() const { return static_cast<int>(chunks_.size()) * MotionNodePool::kChunkNodes; }
+  /// Bytes of node storage the tree holds (its chunks and its leaf queue).
   size_t node_bytes() const {
-    return nodes_.capacity() * sizeof(MotionTreeNode) + order_.capacity() * sizeof(uint32_t) +
-           queue_.capacity() * sizeof(QueueEntry) + visit_stack_.capacity() * sizeof(int);
+    return chunks_.size() * sizeof(MotionNodePool::Chunk) + queue_.capacity() * sizeof(QueueEntry);
   }
   int num_leaves_queued() const { return static_cast<int>(queue_.size()); }
   int max_depth_reached() const;
@@ -186,19 +183,19 @@ class MotionTree {
   /// Bytes of memory per node: the node plus its share of the queue entry.
   static constexpr size_t bytes_per_node() { return sizeof(MotionTreeNode) + sizeof(QueueEntry); }
 
-  /// Visits every node in the tree (depth-first from the root): f(index, node).
+  /// Visits every node in the tree (depth-first from the root): f(index, node). f may walk this
+  /// or another tree too (the walk stack is the thread's, each walk using its own top part).
   template <typename F>
   void for_each_node(F&& f) const {
     if (root_ < 0) return;
-    visit_stack_.clear();
-    visit_stack_.push_back(root_);
-    while (!visit_stack_.empty()) {
-      const int n = visit_stack_.back();
-      visit_stack_.pop_back();
-      f(n, nodes_[static_cast<size_t>(n)]);
-      for (int c = nodes_[static_cast<size_t>(n)].first_child; c >= 0;
-           c = nodes_[static_cast<size_t>(c)].next_sibling)
-        visit_stack_.push_back(c);
+    std::vector<int>& stack = walk_stack();
+    const size_t base = stack.size();
+    stack.push_back(root_);
+    while (stack.size() > base) {
+      const int n = stack.back();
+      stack.pop_back();
+      f(n, at(n));
+      for (int c = at(n).first_child; c >= 0; c = at(c).next_sibling) stack.push_back(c);
     }
   }
 
@@ -212,13 +209,22 @@ class MotionTree {
     return a.priority != b.priority ? a.priority < b.priority : a.order > b.order;
   }
 
-  static constexpr int kInitialNodes = 64;
-  static constexpr int kShrinkCheckReroots = 8;  ///< Re-roots between shrink checks.
-  void reserve_nodes(int n);
-  bool shrink_due(bool reroot);
-  int shrunk_capacity() const;
-  void adopt_storage(std::vector<MotionTreeNode> nodes, std::vector<uint32_t> order);
-  void compact(int capacity);
+  /// The calling thread's scratch stack for walks (one per thread, not per tree: a tree is only
+  /// ever walked by the thread working on it, and 200 trees need not keep 200 stacks).
+  static std::vector<int>& walk_stack();
+  MotionTreeNode& at(int index) {
+    return chunks_[static_cast<size_t>(index) >> MotionNodePool::kChunkShift]
+        ->nodes[static_cast<size_t>(index) & (MotionNodePool::kChunkNodes - 1)];
+  }
+  const MotionTreeNode& at(int index) const {
+    return chunks_[static_cast<size_t>(index) >> MotionNodePool::kChunkShift]
+        ->nodes[static_cast<size_t>(index) & (MotionNodePool::kChunkNodes - 1)];
+  }
+  static int chunks_for(int nodes) {
+    return (nodes + MotionNodePool::kChunkNodes - 1) / MotionNodePool::kChunkNodes;
+  }
+  void give_back_chunks_from(size_t first);
+  void compact();
   int allocate();
   int branch_slot_of(int index) const;
   static int64_t branch_weight(const std::array<float, 8>& weights, const MotionTreeNode& n);
@@ -234,22 +240,14 @@ class MotionTree {
   const CollisionWorld& world_;
   MotionTreeConfig config_;
   TransitionStatistics statistics_;
-  std::vector<MotionTreeNode> nodes_;
-  std::vector<uint32_t> order_;  // per node: creation order
+  std::unique_ptr<MotionNodePool> own_pool_;  ///< Without config().node_pool.
+  MotionNodePool* pool_;
+  std::vector<MotionNodePool::Chunk*> chunks_;  ///< Node i is chunks_[i / 64]->nodes[i % 64].
   std::vector<QueueEntry> queue_;
-  mutable std::vector<int> visit_stack_;
-  struct RankedChild {
-    int64_t sum;  ///< RootChildSum::sum.
-    uint32_t order;
-    int node;
-  };
-  std::vector<RankedChild> ranked_;  ///< select_child()'s scratch (capacity kept).
   std::vector<int> ranked_nodes_;    ///< ranked_children()'s result (capacity kept).
   int free_head_ = -1;
   int first_unused_ = 0;  ///< Nodes from here on were never allocated since reset().
   int num_nodes_ = 0;
-  int peak_nodes_ = 0;          ///< Most nodes seen at a re-root or reset since the last shrink check.
-  int reroots_since_check_ = 0;  ///< Re-roots since then.
   /// Per child of the root: its branch sum, kept up to date as nodes are added. Valid while
   /// sums_valid_ (advance_root changes every depth: the next refresh_priorities sums again).
   struct RootChildSum {
@@ -258,7 +256,6 @@ class MotionTree {
   };
   std::vector<RootChildSum> root_sums_;
   bool sums_valid_ = false;
-  std::vector<std::pair<int, int>> branch_stack_;  ///< refresh_priorities' walk: node, root_sums_ slot.
   int root_ = -1;
   bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
   /// set_command() may skip re-prioritising a repeat of the same command and placement.
