@@ -6,8 +6,6 @@
 
 #include <cstdio>
 
-#include <unistd.h>
-
 namespace foresight::server {
 
 namespace {
@@ -19,15 +17,6 @@ void line(std::string& out, const char* name, const char* type, const char* help
 }
 
 }  // namespace
-
-uint64_t resident_memory_bytes() {
-  std::FILE* f = std::fopen("/proc/self/statm", "r");
-  if (f == nullptr) return 0;
-  unsigned long long pages_total = 0, pages_resident = 0;
-  const int read = std::fscanf(f, "%llu %llu", &pages_total, &pages_resident);
-  std::fclose(f);
-  return read == 2 ? pages_resident * static_cast<uint64_t>(sysconf(_SC_PAGESIZE)) : 0;
-}
 
 std::string admin_metrics_prometheus(const AdminMetrics& m) {
   std::string out;
@@ -102,6 +91,9 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_snapshot_history_bytes", "gauge",
        "Snapshot history for delta coding: the shared archive and every client's sent views.",
        static_cast<double>(m.memory.snapshot_history_bytes));
+  line(out, "foresight_heap_trim_seconds", "gauge",
+       "How long the last return of the heap's free pages to the system took (every 5 s).",
+       m.memory.heap_trim_ms / 1000.0);
   return out;
 }
 

@@ -19,10 +19,8 @@ struct MemoryFigures {
   uint64_t resident_bytes = 0;          ///< The process's resident set (/proc/self/statm).
   uint64_t tree_node_bytes = 0;         ///< Every motion tree's node storage (it grows with the work).
   uint64_t snapshot_history_bytes = 0;  ///< The snapshot archive and every client's sent views.
+  double heap_trim_ms = 0;              ///< The last release_free_heap() (process_memory.hpp).
 };
-
-/// The process's resident set in bytes (0 where /proc is not there).
-uint64_t resident_memory_bytes();
 
 struct AdminMetrics {
   uint32_t tick = 0;

@@ -2,13 +2,13 @@
 //   foresight-server [--scene maze] [--port 7777] [--tick-hz 30] [--snapshot-hz 20] [--threads 1]
 //                    [--budget-ms 20] [--strategy command] [--motions DIR] ...
 #include "io/text_file.hpp"
+#include "process_memory.hpp"
 #include "server.hpp"
 #include "server_options.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <csignal>
-#include <malloc.h>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -29,12 +29,7 @@ enum ExitCode : int {
 };
 
 int main(int argc, char** argv) {
-  // Motion trees' node pools grow and shrink with the work (motion_tree.hpp). glibc serves
-  // blocks over the mmap threshold with their own mappings, returned to the system when freed,
-  // but raises that threshold (up to 32 MB) each time such a block is freed, after which the
-  // pools come from the heap and their freed memory stays resident. A fixed threshold keeps
-  // every large pool in its own mapping, so the server's resident memory follows its trees.
-  mallopt(M_MMAP_THRESHOLD, 64 * 1024);
+  foresight::server::configure_heap();  // before anything is allocated (process_memory.hpp)
   using namespace foresight;
   server::ServerCommandLine cli;
   CLI::App app{"Foresight authoritative server: players and bots connect over UDP"};

@@ -169,6 +169,8 @@ class Server : private SessionEvents {
   CollisionWorld world_;
   /// Every avatar's motion-tree nodes, in chunks (before the avatars: they give them back).
   MotionNodePool node_pool_;
+  static constexpr uint32_t kHeapTrimEvery_s = 5;
+  double heap_trim_ms_ = 0;  ///< The last release_free_heap().
   MotionTreeConfig tree_config_;
   int spawn_segment_ = -1;
   /// Places near the scene's spawns where the standing body fits the scene, nearest first: a

@@ -32,6 +32,10 @@ void SentViews::record(uint32_t snapshot, size_t archived, std::span<const uint3
   s.snapshot = snapshot;
   s.valid = true;
   s.acknowledged = false;
+  if (s.bits.capacity() == 0 && !spare_bits_.empty()) {  // an acknowledged snapshot's storage
+    s.bits.swap(spare_bits_.back());
+    spare_bits_.pop_back();
+  }
   s.bits.assign((2 * archived + 63) / 64, 0);
   for (size_t k = 0; k < indices.size(); ++k) {
     const size_t i = indices[k];
@@ -61,23 +65,27 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
   const auto in_reach = [&](const Newest& n) {
     return snapshot - n.snapshot <= kMaxReferenceBack || newer(n.snapshot, snapshot);
   };
-  merged_.clear();
+  thread_local std::vector<Newest> merged;  // scratch, the thread's (not one per receiver)
+  merged.clear();
   size_t k = 0;
   for (size_t i = 0; i < a->avatars.size(); ++i) {
     if (!in_bits(s.bits, 2 * i)) continue;
     const uint32_t id = a->avatars[i].id();
     for (; k < newest_.size() && newest_[k].id < id; ++k)
-      if (in_reach(newest_[k])) merged_.push_back(newest_[k]);
-    Newest n{id, snapshot};
+      if (in_reach(newest_[k])) merged.push_back(newest_[k]);
+    Newest n{id, snapshot, in_bits(s.bits, 2 * i + 1)};
     if (k < newest_.size() && newest_[k].id == id) {
       if (newer(newest_[k].snapshot, snapshot)) n = newest_[k];
       ++k;
     }
-    merged_.push_back(n);
+    merged.push_back(n);
   }
   for (; k < newest_.size(); ++k)
-    if (in_reach(newest_[k])) merged_.push_back(newest_[k]);
-  newest_.swap(merged_);
+    if (in_reach(newest_[k])) merged.push_back(newest_[k]);
+  // newest_ keeps its own storage (assign, not swap): the scratch's capacity stays with the thread.
+  newest_.assign(merged.begin(), merged.end());
+  spare_bits_.push_back(std::move(s.bits));
+  s.bits = {};
 }
 
 void SentViews::references(const SnapshotArchive& archive, std::span<const wire::AvatarState> view,
@@ -91,6 +99,7 @@ void SentViews::references(const SnapshotArchive& archive, std::span<const wire:
     if (k == newest_.size()) break;
     if (newest_[k].id != id) continue;
     const uint32_t n = newest_[k].snapshot, back = snapshot - n;
+    const bool far = newest_[k].far;
     const Slot& s = slots_[n % SnapshotArchive::kSlots];
     const SnapshotArchive::Slot* a = archive.find(n);
     if (back == 0 || back > kMaxReferenceBack || !s.valid || !s.acknowledged || s.snapshot != n || a == nullptr)
@@ -98,21 +107,20 @@ void SentViews::references(const SnapshotArchive& archive, std::span<const wire:
     const auto it = std::lower_bound(a->avatars.begin(), a->avatars.end(), id,
                                      [](const wire::AvatarState& x, uint32_t v) { return x.id() < v; });
     if (it == a->avatars.end() || it->id() != id) continue;
-    const size_t bit = 2 * static_cast<size_t>(it - a->avatars.begin());
-    if (!in_bits(s.bits, bit)) continue;
     AvatarReference& r = out[i];
     r.found = true;
     r.snapshot = n;
     r.server_tick = a->server_tick;
     r.state = *it;
     r.state.mutate_flags(static_cast<uint8_t>(it->flags() | (id == owner_ ? kAvatarYours : 0) |
-                                              (in_bits(s.bits, bit + 1) ? kAvatarFar : 0)));
+                                              (far ? kAvatarFar : 0)));
   }
 }
 
 size_t SentViews::bytes() const {
-  size_t n = sizeof(*this) + (newest_.capacity() + merged_.capacity()) * sizeof(Newest);
+  size_t n = sizeof(*this) + newest_.capacity() * sizeof(Newest) + spare_bits_.capacity() * sizeof(spare_bits_[0]);
   for (const Slot& s : slots_) n += s.bits.capacity() * sizeof(uint64_t);
+  for (const auto& b : spare_bits_) n += b.capacity() * sizeof(uint64_t);
   return n;
 }
 

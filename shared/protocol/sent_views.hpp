@@ -6,9 +6,13 @@
 // Every receiver's view of a snapshot is a subset of the same avatars, differing only in the
 // per-receiver flags kAvatarYours and kAvatarFar. So the avatars of each snapshot are kept once
 // (SnapshotArchive, shared by all receivers) and, per receiver, only which of them went into its
-// view and which as far ones (SentViews: 2 bits an archived avatar a snapshot, 16 KB for 1000
-// avatars), with whether the receiver acknowledged that snapshot. Copying each view whole per
-// receiver would cost 64 x 24 bytes per avatar in view: 300 KB per receiver seeing 200 avatars.
+// view and which as far ones (SentViews: 2 bits an archived avatar, for each snapshot not yet
+// acknowledged), and per avatar the newest acknowledged snapshot that held it, with its far flag.
+// An acknowledged snapshot's bits are merged into that list and their storage goes back to the
+// receiver's spare bit sets, so a receiver holds bits for the snapshots in flight (a few on a good
+// link; up to 64 when acknowledgements stop), not for all 64: 250 bytes each with 1000 avatars.
+// Copying each view whole per receiver would cost 64 x 24 bytes per avatar in view: 300 KB per
+// receiver seeing 200 avatars.
 #include "protocol/avatar_delta.hpp"
 
 #include <array>
@@ -41,7 +45,8 @@ class SnapshotArchive {
 };
 
 /// One receiver's views of the archived snapshots: which avatars, which of them far, which
-/// snapshots it acknowledged. Allocates nothing once its bit sets have grown to the archive's size.
+/// snapshots it acknowledged. Allocates nothing once it has as many bit sets, grown to the
+/// archive's size, as snapshots are in flight at once.
 class SentViews {
  public:
   /// The receiver's own avatar: the one sent with kAvatarYours.
@@ -64,18 +69,22 @@ class SentViews {
     uint32_t snapshot = 0;
     bool valid = false;
     bool acknowledged = false;
-    std::vector<uint64_t> bits;  ///< Archive index i: bit 2i in view, bit 2i + 1 far.
+    /// Archive index i: bit 2i in view, bit 2i + 1 far. Empty once acknowledged (merged into
+    /// newest_, the storage back in spare_bits_).
+    std::vector<uint64_t> bits;
   };
   std::array<Slot, SnapshotArchive::kSlots> slots_;
+  std::vector<std::vector<uint64_t>> spare_bits_;  ///< Bit sets of acknowledged snapshots, for reuse.
   uint32_t owner_ = 0;
-  /// By id: the newest acknowledged snapshot that held the avatar (entries out of reach are
-  /// dropped as acknowledgements come). Kept so a reference costs one lookup per avatar, not a
-  /// search through 63 snapshots for the far ones that come every few.
+  /// By id: the newest acknowledged snapshot that held the avatar, and whether it went there as a
+  /// far one (entries out of reach are dropped as acknowledgements come). A reference costs one
+  /// lookup per avatar, not a search through 63 snapshots for the far ones that come every few.
   struct Newest {
     uint32_t id = 0;
     uint32_t snapshot = 0;
+    bool far = false;
   };
-  std::vector<Newest> newest_, merged_;
+  std::vector<Newest> newest_;
 };
 
 /// A sender with one receiver whose views are whole snapshots, flags included (tests, tools, the

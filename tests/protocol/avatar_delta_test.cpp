@@ -187,6 +187,39 @@ TEST(AvatarDelta, ReferencesCarryTheFlagsTheReceiverWasSent) {
   EXPECT_EQ(refs[2].state.flags(), 0);
 }
 
+// A receiver holds view bits only for the snapshots in flight (issue 20 item 5): with 1000
+// avatars archived, a client acknowledging each snapshot two later holds a few 250-byte bit sets,
+// not 64; one whose acknowledgements stopped holds all 64 (and loses nothing: references still
+// come from what it acknowledged before).
+TEST(AvatarDelta, AReceiverHoldsViewBitsOnlyForSnapshotsInFlight) {
+  constexpr size_t kArchived = 1000, kBitSetBytes = (2 * kArchived + 63) / 64 * 8;
+  SnapshotArchive archive;
+  SentViews acking, silent;
+  std::vector<uint32_t> indices;
+  std::vector<uint8_t> far;
+  for (uint32_t i = 0; i < kArchived; i += 10) indices.push_back(i), far.push_back(i % 20 == 0);
+  for (uint32_t snapshot = 1; snapshot <= 100; ++snapshot) {
+    auto& avatars = archive.start(snapshot, snapshot).avatars;
+    for (uint32_t id = 1; id <= kArchived; ++id) avatars.emplace_back(id, 0, 0, 1, 1, 1, 1, 0, 0);
+    acking.record(snapshot, kArchived, indices, far);
+    silent.record(snapshot, kArchived, indices, far);
+    if (snapshot > 2) acking.acknowledge(archive, snapshot - 2);
+    if (snapshot == 3) silent.acknowledge(archive, 1);
+    if (snapshot == 50) {
+      std::vector<AvatarReference> refs;
+      silent.references(archive, archive.find(50)->avatars, 50, refs);
+      EXPECT_TRUE(refs[0].found && refs[0].snapshot == 1) << "49 back, still in reach";
+    }
+  }
+  EXPECT_LT(acking.bytes(), 6 * kBitSetBytes + 100 * sizeof(uint32_t) * 3 + sizeof(SentViews));
+  EXPECT_GE(silent.bytes(), 63 * kBitSetBytes);
+  std::vector<AvatarReference> refs;
+  acking.references(archive, archive.find(100)->avatars, 100, refs);
+  EXPECT_TRUE(refs[0].found && refs[0].snapshot == 98 && (refs[0].state.flags() & kAvatarFar));
+  EXPECT_TRUE(refs[10].found && !(refs[10].state.flags() & kAvatarFar));
+  EXPECT_FALSE(refs[1].found) << "never in the view";
+}
+
 // Delta coding survives a round trip of 2 s (40 snapshots at 20 Hz, issue 19): the newest
 // acknowledgement that came back is 50 snapshots old and still a reference.
 TEST(AvatarDelta, AReferenceFiftySnapshotsBackStillCodesDelta) {
