@@ -47,7 +47,7 @@ int bench_lookahead(const LookaheadBenchOptions& o) {
 
   MotionTreeConfig config;
   config.strategy = strategy;
-  config.max_nodes = 1 << 16;
+  config.max_nodes = kMaxTreeNodes;
   MotionTree tree(lib, world, config);
   using Clock = std::chrono::steady_clock;
   int64_t expansions = 0, nodes = 0, frame_checks = 0, trees = 0;

@@ -36,7 +36,7 @@ struct ServerConfig {
   int threads = 0;                 ///< Look-ahead threads, the tick thread included (0: one per core).
   double status_every_s = 10.0;    ///< A status line in the log this often (0: never).
   Strategy strategy = Strategy::kCommand;
-  int tree_max_nodes = 8192;       ///< Per avatar (about 64 B per node).
+  int tree_max_nodes = 8192;       ///< Per avatar (56 B per node), at most kMaxTreeNodes.
   /// Trees are re-prioritised when the command changes, before each decision, and at least every
   /// this many ticks (1: every tick, the lab's replay semantics).
   int resort_interval_ticks = 4;

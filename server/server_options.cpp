@@ -1,6 +1,7 @@
 #include "server_options.hpp"
 
 #include "library_build/motion_source_cli.hpp"
+#include "lookahead/motion_tree_node.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -40,7 +41,7 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
   app.add_option("--status-every-s", c.status_every_s, "Log a status line this often (0: never)")
       ->check(CLI::Range(0.0, 86400.0))->capture_default_str();
   app.add_option("--strategy", out.strategy_name, "Exploration strategy: " + strategy_names())->capture_default_str();
-  app.add_option("--tree-nodes", c.tree_max_nodes, "Tree node cap per avatar")->check(CLI::Range(16, 1 << 20))->capture_default_str();
+  app.add_option("--tree-nodes", c.tree_max_nodes, "Tree node cap per avatar")->check(CLI::Range(16, kMaxTreeNodes))->capture_default_str();
   app.add_option("--resort-ticks", c.resort_interval_ticks,
                  "Re-prioritise trees at least every N ticks (also on command change and before decisions)")
       ->check(CLI::Range(1, 1000))->capture_default_str();

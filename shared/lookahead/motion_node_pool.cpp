@@ -30,7 +30,7 @@ void MotionNodePool::give_back(std::span<Chunk* const> chunks) {
   in_use_ -= chunks.size();
   spare_.insert(spare_.end(), chunks.begin(), chunks.end());
   // Also trims what earlier, larger crowds left: the spare follows the chunks in use down.
-  const size_t keep = std::max(kMinSpare, in_use_ / 4);
+  const size_t keep = std::max(kMinSpare, in_use_ / 16);
   while (spare_.size() > keep) {
     delete spare_.back();
     spare_.pop_back();

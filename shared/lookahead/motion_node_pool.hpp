@@ -37,7 +37,7 @@ class MotionNodePool {
   size_t bytes_spare() const;
 
  private:
-  /// Spare chunks kept for trees that grow again: at most this many, or a quarter of those in use
+  /// Spare chunks kept for trees that grow again: at most this many, or a sixteenth of those in use
   /// (more are freed: the pool follows the sum of the trees down as well as up).
   static constexpr size_t kMinSpare = 32;
 

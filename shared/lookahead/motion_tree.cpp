@@ -28,7 +28,7 @@ std::vector<int>& MotionTree::walk_stack() { return t_walk_stack; }
 MotionTree::MotionTree(const MotionLibrary& library, const CollisionWorld& world,
                        MotionTreeConfig config)
     : library_(library), world_(world), config_(std::move(config)) {
-  config_.max_nodes = std::max(config_.max_nodes, 2);
+  config_.max_nodes = std::clamp(config_.max_nodes, 2, kMaxTreeNodes);
   config_.max_depth = std::clamp(config_.max_depth, 1, 255);
   if (config_.node_pool == nullptr) own_pool_ = std::make_unique<MotionNodePool>();
   pool_ = config_.node_pool != nullptr ? config_.node_pool : own_pool_.get();
@@ -68,7 +68,7 @@ void MotionTree::reset(int segment, const Placement& start, int incoming_transit
   r.transition = incoming_transition;
   r.grow_priority = 1.0f;
   r.match = 1.0f;
-  queue_.push_back({r.grow_priority, r.order, root_});
+  queue_.push_back({r.grow_priority, root_});
 }
 
 // Memory follows the work down as well as up: after a re-root that freed two chunks' worth of
@@ -85,7 +85,7 @@ void MotionTree::compact() {
     new_index[static_cast<size_t>(n)] = static_cast<int32_t>(live.size());
     live.push_back(n);
   });
-  const auto renumber = [&](int32_t i) { return i < 0 ? i : new_index[static_cast<size_t>(i)]; };
+  const auto renumber = [&](int16_t i) { return i < 0 ? i : static_cast<int16_t>(new_index[static_cast<size_t>(i)]); };
   const int count = static_cast<int>(live.size());
   const size_t old_chunks = chunks_.size();
   for (int c = 0; c < chunks_for(count); ++c) chunks_.push_back(pool_->take());
@@ -144,7 +144,7 @@ void MotionTree::free_subtree(int index) {
     MotionTreeNode& node = at(n);
     for (int c = node.first_child; c >= 0; c = at(c).next_sibling) stack.push_back(c);
     node.segment = -1;
-    node.next_sibling = free_head_;
+    node.next_sibling = static_cast<int16_t>(free_head_);
     free_head_ = n;
     --num_nodes_;
   }
@@ -262,9 +262,9 @@ void MotionTree::rebuild_queue() {
   queue_.clear();
   for_each_node([&](int index, const MotionTreeNode& n) {
     if (!n.expanded && n.depth < config_.max_depth)
-      queue_.push_back({n.grow_priority, n.order, index});
+      queue_.push_back({n.grow_priority, index});
   });
-  std::make_heap(queue_.begin(), queue_.end(), queue_less);
+  std::make_heap(queue_.begin(), queue_.end(), queue_less());
 }
 
 GrowResult MotionTree::grow(const GrowBudget& budget) {
@@ -290,7 +290,7 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       result.status |= kGrowOutOfNodes;
       break;
     }
-    std::pop_heap(queue_.begin(), queue_.end(), queue_less);
+    std::pop_heap(queue_.begin(), queue_.end(), queue_less());
     queue_.pop_back();
 
     const int leaf_index = best.node;
@@ -314,12 +314,12 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       c.end_pos_m = place.compose(library_.segment_motion[segment].end).pos_m;
       c.segment = segment;
       c.transition = first_transition + static_cast<int>(i);
-      c.parent = leaf_index;
-      c.depth = static_cast<uint16_t>(parent.depth + 1);
+      c.parent = static_cast<int16_t>(leaf_index);
+      c.depth = static_cast<uint8_t>(parent.depth + 1);
       c.match = parent.match * base_match(c);
       c.grow_priority = grow_priority_of(c, parent.grow_priority);
       c.next_sibling = parent.first_child;
-      parent.first_child = child;
+      parent.first_child = static_cast<int16_t>(child);
       ++result.nodes_added;
       if (sums_valid_) {
         const int64_t weighted = branch_weight(w, c);
@@ -327,8 +327,8 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
         else root_sums_[static_cast<size_t>(branch_slot)].sum += weighted;
       }
       if (c.depth < config_.max_depth) {
-        queue_.push_back({c.grow_priority, c.order, child});
-        std::push_heap(queue_.begin(), queue_.end(), queue_less);
+        queue_.push_back({c.grow_priority, child});
+        std::push_heap(queue_.begin(), queue_.end(), queue_less());
       }
     }
     at(leaf_index).expanded = 1;

@@ -34,7 +34,7 @@
 namespace foresight {
 
 struct MotionTreeConfig {
-  int max_nodes = 8192;        ///< Nodes at most (the tree's storage grows to this). [Limit: >= 2]
+  int max_nodes = 8192;        ///< Nodes at most (the tree's storage grows to this). [2, kMaxTreeNodes]
   /// Where the tree's node chunks come from: the server's pool, shared by its avatars. nullptr:
   /// the tree makes its own (tests, benches, one avatar alone).
   MotionNodePool* node_pool = nullptr;
@@ -202,11 +202,15 @@ class MotionTree {
  private:
   struct QueueEntry {
     float priority;
-    uint32_t order;  // creation order: earlier wins ties (FIFO), for determinism
     int32_t node;
   };
-  static bool queue_less(const QueueEntry& a, const QueueEntry& b) {
-    return a.priority != b.priority ? a.priority < b.priority : a.order > b.order;
+  /// The heap's order: higher priority first; on a tie the node created first (FIFO, for
+  /// determinism), its creation order read from the node (ties are rare, and 8-byte entries
+  /// keep the queue at two thirds of the size).
+  auto queue_less() const {
+    return [this](const QueueEntry& a, const QueueEntry& b) {
+      return a.priority != b.priority ? a.priority < b.priority : at(a.node).order > at(b.node).order;
+    };
   }
 
   /// The calling thread's scratch stack for walks (one per thread, not per tree: a tree is only

@@ -72,18 +72,23 @@ std::span<const uint8_t> Sealer::seal(PacketWriter& w, std::span<const uint8_t> 
   const auto nonce = nonce_of(sequence);
   const auto ad = ad_of(session_);
   unsigned long long n = 0;
-  crypto_aead_chacha20poly1305_ietf_encrypt(scratch_.data(), &n, inner.data(), inner.size(), ad.data(), ad.size(),
+  // Sealed into the thread's scratch first: `inner` may be the writer's own last packet, which
+  // begin() below starts overwriting.
+  thread_local std::array<uint8_t, kMaxDatagramBytes + kSealTagBytes> sealed;
+  crypto_aead_chacha20poly1305_ietf_encrypt(sealed.data(), &n, inner.data(), inner.size(), ad.data(), ad.size(),
                                             nullptr, nonce.data(), key_.data());
   auto& fbb = w.begin();
-  const auto payload = fbb.CreateVector(scratch_.data(), static_cast<size_t>(n));
+  const auto payload = fbb.CreateVector(sealed.data(), static_cast<size_t>(n));
   return w.finish(wire::CreateSealed(fbb, session_, sequence, payload));
 }
 
 const wire::Packet* Opener::open(const wire::Sealed& m, DropReason& reason) {
   reason = DropReason::kUnauthenticated;
   const auto* payload = m.payload();
+  // The thread's buffer (see the header): 16-byte aligned, FlatBuffers read the packet in place.
+  alignas(16) thread_local std::array<uint8_t, kMaxDatagramBytes> plain;
   if (!ready_ || m.session() != session_ || payload == nullptr || payload->size() < kSealTagBytes ||
-      payload->size() - kSealTagBytes > plain_.size())
+      payload->size() - kSealTagBytes > plain.size())
     return nullptr;
   if (!window_.fresh(m.sequence())) {
     reason = DropReason::kReplayed;
@@ -92,16 +97,17 @@ const wire::Packet* Opener::open(const wire::Sealed& m, DropReason& reason) {
   const auto nonce = nonce_of(m.sequence());
   const auto ad = ad_of(session_);
   unsigned long long n = 0;
-  if (crypto_aead_chacha20poly1305_ietf_decrypt(plain_.data(), &n, nullptr, payload->data(), payload->size(), ad.data(),
+  if (crypto_aead_chacha20poly1305_ietf_decrypt(plain.data(), &n, nullptr, payload->data(), payload->size(), ad.data(),
                                                 ad.size(), nonce.data(), key_.data()) != 0)
     return nullptr;  // forged or corrupted: the window stays as it was
-  const wire::Packet* inner = packet_read({plain_.data(), static_cast<size_t>(n)}, reason);
+  const wire::Packet* inner = packet_read({plain.data(), static_cast<size_t>(n)}, reason);
   if (inner == nullptr) return nullptr;
   if (inner->message_type() == wire::Message::Sealed) {  // no nesting
     reason = DropReason::kUnexpected;
     return nullptr;
   }
   window_.mark(m.sequence());
+  plain_ = plain.data();
   plain_size_ = static_cast<size_t>(n);
   return inner;
 }

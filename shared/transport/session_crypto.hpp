@@ -65,12 +65,13 @@ class Sealer {
   SessionKey key_{};
   uint64_t next_ = 1;
   bool ready_ = false;
-  std::array<uint8_t, kMaxDatagramBytes + kSealTagBytes> scratch_{};
 };
 
 /// The receiver's side: the inner packet of a Sealed message, or nullptr with `reason`
-/// (kUnauthenticated: wrong session or forged/corrupted; kReplayed). `plain` receives the inner
-/// bytes (the returned packet points into it).
+/// (kUnauthenticated: wrong session or forged/corrupted; kReplayed). The inner bytes go to the
+/// calling thread's buffer, not the Opener's (a server holds an Opener per session, and 1.2 KB
+/// each was most of a session's memory): the returned packet and plain() are valid until the
+/// next open() on this thread, by this Opener or any other.
 class Opener {
  public:
   void set(uint32_t session, const SessionKey& key) {
@@ -81,16 +82,16 @@ class Opener {
   }
   bool ready() const { return ready_; }
   const wire::Packet* open(const wire::Sealed& m, DropReason& reason);
-  /// The inner packet's bytes of the last successful open.
-  std::span<const uint8_t> plain() const { return {plain_.data(), plain_size_}; }
+  /// The inner packet's bytes of the last successful open (see above for how long).
+  std::span<const uint8_t> plain() const { return {plain_, plain_size_}; }
 
  private:
+  const uint8_t* plain_ = nullptr;
   size_t plain_size_ = 0;
   uint32_t session_ = 0;
   SessionKey key_{};
   ReplayWindow window_;
   bool ready_ = false;
-  alignas(16) std::array<uint8_t, kMaxDatagramBytes> plain_{};
 };
 
 }  // namespace foresight::protocol

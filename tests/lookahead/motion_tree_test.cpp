@@ -147,6 +147,35 @@ TEST(MotionTree, NodeStorageGrowsWithTheTreeUpToTheCap) {
   EXPECT_EQ(counted, t.num_nodes());
 }
 
+// Links are 16 bits: the cap is kMaxTreeNodes, and a tree grown to it keeps every link (the
+// highest indices included) through a re-root.
+TEST(MotionTree, TheLargestTreeKeepsEveryLink) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  EXPECT_EQ(MotionTree(lib, arena.world, config_for(Strategy::kCommand, 1 << 20)).config().max_nodes, kMaxTreeNodes);
+  MotionTreeConfig c = config_for(Strategy::kBreadthFirst, kMaxTreeNodes);
+  c.max_depth = 255;
+  MotionTree t(lib, arena.world, c);
+  t.reset(walk_segment(lib), kOpen);
+  ASSERT_NE(t.grow(GrowBudget::expansions(1000000)).status & kGrowOutOfNodes, 0);
+  ASSERT_GT(t.num_nodes(), kMaxTreeNodes - 100);
+  const auto links_hold = [&] {
+    int counted = 0, highest = 0;
+    t.for_each_node([&](int i, const MotionTreeNode& n) {
+      ++counted;
+      highest = std::max(highest, i);
+      for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) EXPECT_EQ(t.node(k).parent, i);
+    });
+    EXPECT_EQ(counted, t.num_nodes());
+    return highest;
+  };
+  EXPECT_GT(links_hold(), kMaxTreeNodes - 100) << "indices near the top of 16 bits are in use";
+  const int child = t.select_child();
+  ASSERT_GE(child, 0);
+  t.advance_root(child);
+  links_hold();
+}
+
 // ...and back down: a tree that grew large (a player alone on the server) and then holds a few
 // hundred nodes (the server filled up) gives its chunks back at a re-root; the tree is the same
 // tree after the move (nodes renumbered, links and creation orders kept), and grows on exactly as

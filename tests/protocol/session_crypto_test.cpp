@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
 #include <vector>
 
 namespace foresight::protocol {
@@ -51,6 +52,37 @@ TEST(SessionCrypto, WhatOneSideSealsTheOtherOpensOnce) {
   // The same datagram again: a replay.
   EXPECT_EQ(opener.open(*as_sealed(sealed), reason), nullptr);
   EXPECT_EQ(reason, DropReason::kReplayed);
+}
+
+// The seal and open buffers are the thread's, not the session's (a server holds a Sealer and an
+// Opener per session): sessions sealed and opened on two threads at once each get their own
+// messages back, every time.
+TEST(SessionCrypto, SessionsOnTwoThreadsSealAndOpenTheirOwnMessages) {
+  EXPECT_LT(sizeof(Sealer) + sizeof(Opener), 256u) << "no datagram-sized buffer per session";
+  Pair k;
+  int wrong[2] = {0, 0};
+  const auto run = [&](int t) {
+    const uint32_t session = 10 + static_cast<uint32_t>(t);
+    Sealer sealer;
+    sealer.set(session, k.client_keys.send);
+    Opener opener;
+    opener.set(session, k.server_keys.receive);
+    PacketWriter inner_writer, seal_writer;
+    for (uint32_t i = 1; i <= 2000; ++i) {
+      const auto inner = copy(write_heartbeat(inner_writer, session, i * 2 + static_cast<uint32_t>(t)));
+      const auto sealed = copy(sealer.seal(seal_writer, inner));
+      DropReason reason = DropReason::kNone;
+      const wire::Packet* got = opener.open(*as_sealed(sealed), reason);
+      if (got == nullptr || got->message_as_Heartbeat() == nullptr ||
+          got->message_as_Heartbeat()->client_time_ms() != i * 2 + static_cast<uint32_t>(t) || copy(opener.plain()) != inner)
+        ++wrong[t];
+    }
+  };
+  std::thread a(run, 0), b(run, 1);
+  a.join();
+  b.join();
+  EXPECT_EQ(wrong[0], 0);
+  EXPECT_EQ(wrong[1], 0);
 }
 
 TEST(SessionCrypto, ForgedTamperedAndMisdirectedMessagesAreRefused) {
