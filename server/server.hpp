@@ -15,8 +15,9 @@
 //   6 send       at snapshot_hz: the avatars in id order gathered once, then each client's view
 //                built, delta-coded, sealed and sent on the workers (snapshot_builder.hpp); the
 //                contact check
-//   7 finish     tick figures, the overrun line, trees of departed avatars released a few a tick,
-//                the admin endpoint's figures, the status line
+//   7 finish     tick figures, every 5 s the heap's free pages back to the system
+//                (process_memory.hpp), the overrun line, the admin endpoint's figures, the status
+//                line
 //
 // Avatars live in one table per kind (avatars.hpp) addressed by generation-counted handles;
 // sessions in the session table (session_table.hpp). run() loops run_tick at tick_hz until
