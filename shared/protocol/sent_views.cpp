@@ -3,6 +3,7 @@
 #include "protocol/protocol.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace foresight::protocol {
 
@@ -45,14 +46,6 @@ void SentViews::record(uint32_t snapshot, size_t archived, std::span<const uint3
   }
 }
 
-namespace {
-
-bool in_bits(const std::vector<uint64_t>& bits, size_t bit) {
-  return bit / 64 < bits.size() && (bits[bit / 64] >> (bit % 64) & 1) != 0;
-}
-
-}  // namespace
-
 void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
   Slot& s = slots_[snapshot % SnapshotArchive::kSlots];
   const SnapshotArchive::Slot* a = archive.find(snapshot);
@@ -68,17 +61,25 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
   thread_local std::vector<Newest> merged;  // scratch, the thread's (not one per receiver)
   merged.clear();
   size_t k = 0;
-  for (size_t i = 0; i < a->avatars.size(); ++i) {
-    if (!in_bits(s.bits, 2 * i)) continue;
-    const uint32_t id = a->avatars[i].id();
-    for (; k < newest_.size() && newest_[k].id < id; ++k)
-      if (in_reach(newest_[k])) merged.push_back(newest_[k]);
-    Newest n{id, snapshot, in_bits(s.bits, 2 * i + 1)};
-    if (k < newest_.size() && newest_[k].id == id) {
-      if (newer(newest_[k].snapshot, snapshot)) n = newest_[k];
-      ++k;
+  // Only the avatars in the view: the set "in view" bits (even bits), word by word. A view holds
+  // a few dozen of the 1000 archived avatars; testing each archived one cost a tenth of the
+  // server's time at 1000 players.
+  constexpr uint64_t kInViewBits = 0x5555555555555555ull;
+  for (size_t w = 0; w < s.bits.size(); ++w) {
+    for (uint64_t in_view = s.bits[w] & kInViewBits; in_view != 0; in_view &= in_view - 1) {
+      const int bit = std::countr_zero(in_view);
+      const size_t i = (w * 64 + static_cast<size_t>(bit)) / 2;
+      if (i >= a->avatars.size()) break;
+      const uint32_t id = a->avatars[i].id();
+      for (; k < newest_.size() && newest_[k].id < id; ++k)
+        if (in_reach(newest_[k])) merged.push_back(newest_[k]);
+      Newest n{id, snapshot, static_cast<uint32_t>(i), static_cast<uint32_t>(s.bits[w] >> (bit + 1) & 1)};
+      if (k < newest_.size() && newest_[k].id == id) {
+        if (newer(newest_[k].snapshot, snapshot)) n = newest_[k];
+        ++k;
+      }
+      merged.push_back(n);
     }
-    merged.push_back(n);
   }
   for (; k < newest_.size(); ++k)
     if (in_reach(newest_[k])) merged.push_back(newest_[k]);
@@ -99,14 +100,14 @@ void SentViews::references(const SnapshotArchive& archive, std::span<const wire:
     if (k == newest_.size()) break;
     if (newest_[k].id != id) continue;
     const uint32_t n = newest_[k].snapshot, back = snapshot - n;
-    const bool far = newest_[k].far;
+    const bool far = newest_[k].far != 0;
+    const uint32_t index = newest_[k].index;
     const Slot& s = slots_[n % SnapshotArchive::kSlots];
     const SnapshotArchive::Slot* a = archive.find(n);
     if (back == 0 || back > kMaxReferenceBack || !s.valid || !s.acknowledged || s.snapshot != n || a == nullptr)
       continue;
-    const auto it = std::lower_bound(a->avatars.begin(), a->avatars.end(), id,
-                                     [](const wire::AvatarState& x, uint32_t v) { return x.id() < v; });
-    if (it == a->avatars.end() || it->id() != id) continue;
+    if (index >= a->avatars.size() || a->avatars[index].id() != id) continue;
+    const wire::AvatarState* it = &a->avatars[index];
     AvatarReference& r = out[i];
     r.found = true;
     r.snapshot = n;

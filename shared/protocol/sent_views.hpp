@@ -76,13 +76,15 @@ class SentViews {
   std::array<Slot, SnapshotArchive::kSlots> slots_;
   std::vector<std::vector<uint64_t>> spare_bits_;  ///< Bit sets of acknowledged snapshots, for reuse.
   uint32_t owner_ = 0;
-  /// By id: the newest acknowledged snapshot that held the avatar, and whether it went there as a
-  /// far one (entries out of reach are dropped as acknowledgements come). A reference costs one
-  /// lookup per avatar, not a search through 63 snapshots for the far ones that come every few.
+  /// By id: the newest acknowledged snapshot that held the avatar, where in that snapshot's
+  /// archive, and whether it went there as a far one (entries out of reach are dropped as
+  /// acknowledgements come). A reference costs one lookup per avatar: no search through 63
+  /// snapshots for the far ones that come every few, no search of the archived snapshot.
   struct Newest {
     uint32_t id = 0;
     uint32_t snapshot = 0;
-    bool far = false;
+    uint32_t index : 31 = 0;  ///< In the archive's slot of `snapshot`.
+    uint32_t far : 1 = 0;
   };
   std::vector<Newest> newest_;
 };
