@@ -1,7 +1,7 @@
 #pragma once
-// Node storage shared by motion trees (docs/LOOKAHEAD.md "Node storage"): chunks of kChunkNodes
-// nodes that a tree takes as its budget pays for nodes and gives back when a re-root or a reset
-// leaves it with fewer. One pool serves every avatar of a server, so the memory follows the sum of
+// Node storage shared by motion trees (docs/LOOKAHEAD.md "Memory and determinism"): chunks of
+// kChunkNodes nodes that a tree takes as its budget pays for nodes and gives back when a re-root
+// or a reset leaves it with fewer. One pool serves every avatar of a server, so the memory follows the sum of
 // the trees, whose peaks (just before each re-root) come at different times, not each tree's own
 // peak. Chunks, not nodes, go through the lock: a tree takes one per 64 nodes it grows by.
 // Thread-safe: trees grow on the look-ahead workers.
