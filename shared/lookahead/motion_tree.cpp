@@ -134,20 +134,15 @@ int MotionTree::allocate() {
 }
 
 void MotionTree::free_subtree(int index) {
-  // Iterative: a long chain must not recurse once per node.
-  std::vector<int>& stack = walk_stack();
-  const size_t base = stack.size();
-  stack.push_back(index);
-  while (stack.size() > base) {
-    const int n = stack.back();
-    stack.pop_back();
+  // Iterative (a long chain must not recurse once per node); a node's children are taken after it
+  // joins the free list, through its first_child, which that leaves alone.
+  walk_subtree(index, [&](int n) {
     MotionTreeNode& node = at(n);
-    for (int c = node.first_child; c >= 0; c = at(c).next_sibling) stack.push_back(c);
     node.segment = -1;
     node.next_sibling = static_cast<int16_t>(free_head_);
     free_head_ = n;
     --num_nodes_;
-  }
+  });
 }
 
 // Command matching (4.2): the angle between the command u and v_k, the movement from where the

@@ -187,16 +187,7 @@ class MotionTree {
   /// or another tree too (the walk stack is the thread's, each walk using its own top part).
   template <typename F>
   void for_each_node(F&& f) const {
-    if (root_ < 0) return;
-    std::vector<int>& stack = walk_stack();
-    const size_t base = stack.size();
-    stack.push_back(root_);
-    while (stack.size() > base) {
-      const int n = stack.back();
-      stack.pop_back();
-      f(n, at(n));
-      for (int c = at(n).first_child; c >= 0; c = at(c).next_sibling) stack.push_back(c);
-    }
+    if (root_ >= 0) walk_subtree(root_, [&](int n) { f(n, at(n)); });
   }
 
  private:
@@ -216,6 +207,20 @@ class MotionTree {
   /// The calling thread's scratch stack for walks (one per thread, not per tree: a tree is only
   /// ever walked by the thread working on it, and 200 trees need not keep 200 stacks).
   static std::vector<int>& walk_stack();
+  /// f(index) for `first` and every node below it, each before its children; f may unlink the
+  /// node from its siblings (its children are taken after f returns, its siblings before).
+  template <typename F>
+  void walk_subtree(int first, F&& f) const {
+    std::vector<int>& stack = walk_stack();
+    const size_t base = stack.size();
+    stack.push_back(first);
+    while (stack.size() > base) {
+      const int n = stack.back();
+      stack.pop_back();
+      f(n);
+      for (int c = at(n).first_child; c >= 0; c = at(c).next_sibling) stack.push_back(c);
+    }
+  }
   MotionTreeNode& at(int index) {
     return chunks_[static_cast<size_t>(index) >> MotionNodePool::kChunkShift]
         ->nodes[static_cast<size_t>(index) & (MotionNodePool::kChunkNodes - 1)];

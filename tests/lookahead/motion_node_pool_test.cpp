@@ -4,6 +4,7 @@
 #include "lookahead/motion_tree.hpp"
 #include "support/segments.hpp"
 
+#include "library/foreign_capture.hpp"
 #include "lookahead_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -34,11 +35,13 @@ vec2 key_of(int k, int step) {
   return step % 6 < 3 ? vec2(0.4f * static_cast<float>(k - 2), 1.0f) : vec2(-0.3f, 1.0f);
 }
 
+using Play = std::vector<std::vector<MotionTreeNode>>;  // the tree after every step
+
 // A few seconds of one avatar's play: a large first growth (alone on the server), then re-roots
-// with a tick's budget each. Returns the tree after every step.
-std::vector<std::vector<MotionTreeNode>> play(MotionTree& t, int k) {
-  std::vector<std::vector<MotionTreeNode>> trees;
-  t.reset(walk_segment(default_library()), start_of(k));
+// with a tick's budget each.
+Play play(MotionTree& t, const MotionLibrary& lib, int k) {
+  Play trees;
+  t.reset(walk_segment(lib), start_of(k));
   t.set_command(key_of(k, 0), start_of(k));
   t.grow(GrowBudget::expansions(3000));
   for (int step = 0; step < 30; ++step) {
@@ -53,8 +56,17 @@ std::vector<std::vector<MotionTreeNode>> play(MotionTree& t, int k) {
   return trees;
 }
 
-void expect_same_trees(const std::vector<std::vector<MotionTreeNode>>& a,
-                       const std::vector<std::vector<MotionTreeNode>>& b, int k) {
+// Avatars 0..n-1 each played by a tree with its own pool.
+std::vector<Play> play_alone(const MotionLibrary& lib, const CollisionWorld& world, int n) {
+  std::vector<Play> plays;
+  for (int k = 0; k < n; ++k) {
+    MotionTree own(lib, world, MotionTreeConfig{});
+    plays.push_back(play(own, lib, k));
+  }
+  return plays;
+}
+
+void expect_same_trees(const Play& a, const Play& b, int k) {
   ASSERT_EQ(a.size(), b.size()) << "avatar " << k;
   ASSERT_GE(a.size(), 10u) << "avatar " << k << " walked on";
   for (size_t step = 0; step < a.size(); ++step) {
@@ -64,15 +76,10 @@ void expect_same_trees(const std::vector<std::vector<MotionTreeNode>>& a,
   }
 }
 
-TEST(MotionNodePool, TreesSharingAPoolGrowAsTreesWithTheirOwnAndGiveEveryChunkBack) {
-  const auto& lib = default_library();
+void expect_shared_pool_grows_trees_as_their_own(const MotionLibrary& lib) {
   const auto& arena = loaded_scene("arena");
   constexpr int kAvatars = 5;
-  std::vector<std::vector<std::vector<MotionTreeNode>>> alone(kAvatars);
-  for (int k = 0; k < kAvatars; ++k) {
-    MotionTree own(lib, arena.world, MotionTreeConfig{});
-    alone[static_cast<size_t>(k)] = play(own, k);
-  }
+  const std::vector<Play> alone = play_alone(lib, arena.world, kAvatars);
   MotionNodePool pool;
   {
     MotionTreeConfig shared;
@@ -81,7 +88,7 @@ TEST(MotionNodePool, TreesSharingAPoolGrowAsTreesWithTheirOwnAndGiveEveryChunkBa
     for (int k = 0; k < kAvatars; ++k) trees.push_back(std::make_unique<MotionTree>(lib, arena.world, shared));
     size_t held = 0;
     for (int k = 0; k < kAvatars; ++k) {
-      expect_same_trees(play(*trees[static_cast<size_t>(k)], k), alone[static_cast<size_t>(k)], k);
+      ASSERT_NO_FATAL_FAILURE(expect_same_trees(play(*trees[static_cast<size_t>(k)], lib, k), alone[static_cast<size_t>(k)], k));
       held += static_cast<size_t>(trees[static_cast<size_t>(k)]->node_capacity()) / MotionNodePool::kChunkNodes;
     }
     EXPECT_EQ(pool.bytes_in_use(), held * kChunkBytes) << "the pool counts the chunks the trees hold";
@@ -96,17 +103,27 @@ TEST(MotionNodePool, TreesSharingAPoolGrowAsTreesWithTheirOwnAndGiveEveryChunkBa
   EXPECT_GT(pool.bytes_spare(), 0u) << "some are kept for the next trees";
 }
 
+TEST(MotionNodePool, TreesSharingAPoolGrowAsTreesWithTheirOwnAndGiveEveryChunkBack) {
+  ASSERT_NO_FATAL_FAILURE(expect_shared_pool_grows_trees_as_their_own(default_library()));
+}
+
+// The same on capture the team did not make (the Bandai walk in inches under a dummy root, its
+// own graph).
+TEST(MotionNodePool, TreesOfAForeignCaptureSharingAPoolGrowAsTreesWithTheirOwn) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_walk_library("", lib));
+  ASSERT_NO_FATAL_FAILURE(expect_shared_pool_grows_trees_as_their_own(lib));
+}
+
 // The pool's lock is the only thing trees on the look-ahead workers share: trees grown on two
 // threads at once are the trees grown one after another.
 TEST(MotionNodePool, TreesOnTwoThreadsShareOnePool) {
   const auto& lib = default_library();
   const auto& arena = loaded_scene("arena");
   constexpr int kAvatars = 4;
-  std::vector<std::vector<std::vector<MotionTreeNode>>> alone(kAvatars), threaded(kAvatars);
-  for (int k = 0; k < kAvatars; ++k) {
-    MotionTree own(lib, arena.world, MotionTreeConfig{});
-    alone[static_cast<size_t>(k)] = play(own, k);
-  }
+  const std::vector<Play> alone = play_alone(lib, arena.world, kAvatars);
+  std::vector<Play> threaded(kAvatars);
   MotionNodePool pool;
   MotionTreeConfig shared;
   shared.node_pool = &pool;
@@ -116,7 +133,7 @@ TEST(MotionNodePool, TreesOnTwoThreadsShareOnePool) {
       threads.emplace_back([&, half] {
         for (int k = half; k < kAvatars; k += 2) {
           MotionTree t(lib, arena.world, shared);
-          threaded[static_cast<size_t>(k)] = play(t, k);
+          threaded[static_cast<size_t>(k)] = play(t, lib, k);
         }
       });
     for (std::thread& t : threads) t.join();
