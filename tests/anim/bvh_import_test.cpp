@@ -371,6 +371,11 @@ TEST(BvhImport, RejectsEmptyMotionInvalidDocumentsAndBadTargetFps) {
   slow.frame_time_s = 1e9;
   EXPECT_FALSE(clip_from_bvh(slow, "slow", {}, s, c, nullptr, error));
   EXPECT_NE(error.find("too large"), std::string::npos) << error;
+  // ... and so is one that would take gigabytes (20 million samples: 560 MB before the FK and the
+  // retargeting; fuzz-bvh ran out of 2 GB on such a file).
+  slow.frame_time_s = 20e6 / static_cast<double>(slow.joints.size()) / 60.0;
+  EXPECT_FALSE(clip_from_bvh(slow, "slow", {}, s, c, nullptr, error));
+  EXPECT_NE(error.find("the limit is"), std::string::npos) << error;
   EXPECT_FALSE(clip_load_bvh(test::scratch_dir() / "absent.bvh", {}, s, c, nullptr, error));
   // OFFSETs near the float limit add up to infinity in the posed body: refused, not imported.
   BvhDocument huge = test::humanoid_document(1.0f, false);
