@@ -2,8 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace foresight {
+
+namespace {
+
+/// place() for every frame of one segment, the heading's cosine and sine taken once (the same
+/// arithmetic as rotate_ground, so the same placed volumes).
+struct Placer {
+  explicit Placer(const Placement& p) : c(std::cos(p.heading_rad)), s(std::sin(p.heading_rad)), pos_m(p.pos_m) {}
+  vec2 rotate(vec2 v) const { return {c * v.x + s * v.y, -s * v.x + c * v.y}; }
+  BodyVolume operator()(const BodyVolume& v) const {
+    return {rotate(v.center_m) + pos_m, v.radius_m, v.y_min_m, v.y_max_m, rotate(v.half_axis_m)};
+  }
+  float c, s;
+  vec2 pos_m;
+};
+
+/// The disc and box tests are bounds on the capsule test; this slack keeps a rounding error in
+/// them from skipping a pair that the capsule test would find touching.
+constexpr float kSlack_m = 1e-3f;
+
+}  // namespace
 
 void Reservations::configure(const GroundRect& bounds, float cell_m, float clearance_m) {
   cell_m_ = std::max(cell_m, 0.25f);
@@ -16,50 +37,99 @@ void Reservations::configure(const GroundRect& bounds, float cell_m, float clear
   cells_.assign(static_cast<size_t>(count_x_) * static_cast<size_t>(count_z_), {});
   touched_.clear();
   bodies_.clear();
-  max_reach_m_ = 0.0f;
+  runs_.clear();
 }
 
 void Reservations::clear() {
   for (int c : touched_) cells_[static_cast<size_t>(c)].clear();
   touched_.clear();
   bodies_.clear();
-  max_reach_m_ = 0.0f;
+  runs_.clear();
 }
 
-int Reservations::cell_of(vec2 p) const {
-  const int ix = std::clamp(static_cast<int>(std::floor((p.x - origin_m_.x) / cell_m_)), 0, count_x_ - 1);
-  const int iz = std::clamp(static_cast<int>(std::floor((p.y - origin_m_.y) / cell_m_)), 0, count_z_ - 1);
-  return iz * count_x_ + ix;
+// Clamped to the grid (NaN to the first cell), monotone: a box's cells are those of its corners.
+int Reservations::cell_x(float x) const {
+  const float f = std::floor((x - origin_m_.x) / cell_m_);
+  if (!(f > 0.0f)) return 0;
+  return f >= static_cast<float>(count_x_ - 1) ? count_x_ - 1 : static_cast<int>(f);
+}
+
+int Reservations::cell_z(float z) const {
+  const float f = std::floor((z - origin_m_.y) / cell_m_);
+  if (!(f > 0.0f)) return 0;
+  return f >= static_cast<float>(count_z_ - 1) ? count_z_ - 1 : static_cast<int>(f);
 }
 
 void Reservations::add(int owner, const MotionLibrary& library, int segment, int from_frame,
                        const Placement& start) {
   const auto frames = library.volumes(segment);
-  for (size_t f = static_cast<size_t>(std::max(from_frame, 0)); f < frames.size(); ++f) {
-    const BodyVolume v = place(frames[f], start);
-    const int cell = cell_of(v.center_m);
-    auto& list = cells_[static_cast<size_t>(cell)];
-    if (list.empty()) touched_.push_back(cell);
-    list.push_back(static_cast<int>(bodies_.size()));
-    bodies_.push_back({v, owner});
-    max_reach_m_ = std::max(max_reach_m_, v.reach_m());
+  const size_t from = static_cast<size_t>(std::max(from_frame, 0));
+  if (from >= frames.size()) return;
+  const Placer placer(start);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  Run run{vec2(kInf), vec2(-kInf), static_cast<int>(bodies_.size()), 0, owner};
+  for (size_t f = from; f < frames.size(); ++f) {
+    const BodyVolume v = placer(frames[f]);
+    const float reach = v.reach_m();
+    bodies_.push_back({v, reach});
+    run.lo_m = glm::min(run.lo_m, v.center_m - vec2(reach));
+    run.hi_m = glm::max(run.hi_m, v.center_m + vec2(reach));
   }
+  run.end = static_cast<int>(bodies_.size());
+  const int index = static_cast<int>(runs_.size());
+  runs_.push_back(run);
+  for (int z = cell_z(run.lo_m.y), z1 = cell_z(run.hi_m.y); z <= z1; ++z)
+    for (int x = cell_x(run.lo_m.x), x1 = cell_x(run.hi_m.x); x <= x1; ++x) {
+      const int cell = z * count_x_ + x;
+      auto& list = cells_[static_cast<size_t>(cell)];
+      if (list.empty()) touched_.push_back(cell);
+      list.push_back(index);
+    }
 }
 
 bool Reservations::blocks(int self, const MotionLibrary& library, int segment,
                           const Placement& start) const {
-  if (bodies_.empty()) return false;
+  if (runs_.empty()) return false;
+  thread_local std::vector<Reserved> placed;  // the candidate's frames; capacity kept
+  placed.clear();
+  const Placer placer(start);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  vec2 lo(kInf), hi(-kInf);
   for (const BodyVolume& local : library.volumes(segment)) {
-    const BodyVolume v = place(local, start);
-    const float reach = v.reach_m() + max_reach_m_ + clearance_m_;
-    const int x0 = cell_of(v.center_m - vec2(reach)) % count_x_, z0 = cell_of(v.center_m - vec2(reach)) / count_x_;
-    const int x1 = cell_of(v.center_m + vec2(reach)) % count_x_, z1 = cell_of(v.center_m + vec2(reach)) / count_x_;
-    for (int z = z0; z <= z1; ++z)
-      for (int x = x0; x <= x1; ++x)
-        for (int i : cells_[static_cast<size_t>(z * count_x_ + x)]) {
-          const Reserved& d = bodies_[static_cast<size_t>(i)];
-          if (d.owner != self && footprints_overlap(v, d.volume, clearance_m_)) return true;
-        }
+    const BodyVolume v = placer(local);
+    const float reach = v.reach_m();
+    placed.push_back({v, reach});
+    lo = glm::min(lo, v.center_m - vec2(reach));
+    hi = glm::max(hi, v.center_m + vec2(reach));
+  }
+  if (placed.empty()) return false;
+  lo -= vec2(clearance_m_ + kSlack_m);
+  hi += vec2(clearance_m_ + kSlack_m);
+  for (int z = cell_z(lo.y), z1 = cell_z(hi.y); z <= z1; ++z)
+    for (int x = cell_x(lo.x), x1 = cell_x(hi.x); x <= x1; ++x)
+      for (int i : cells_[static_cast<size_t>(z * count_x_ + x)]) {
+        const Run& run = runs_[static_cast<size_t>(i)];
+        if (run.owner == self || run.hi_m.x < lo.x || run.lo_m.x > hi.x || run.hi_m.y < lo.y || run.lo_m.y > hi.y)
+          continue;
+        // A run in several of these cells is looked at once: in the cell of the overlap's low corner.
+        if (cell_x(std::max(run.lo_m.x, lo.x)) != x || cell_z(std::max(run.lo_m.y, lo.y)) != z) continue;
+        if (run_blocks(run, placed)) return true;
+      }
+  return false;
+}
+
+bool Reservations::run_blocks(const Run& run, std::span<const Reserved> frames) const {
+  for (const Reserved& a : frames) {
+    const float reach = a.reach_m + clearance_m_ + kSlack_m;
+    const vec2 c = a.volume.center_m;
+    if (c.x + reach < run.lo_m.x || c.x - reach > run.hi_m.x || c.y + reach < run.lo_m.y || c.y - reach > run.hi_m.y)
+      continue;
+    for (int j = run.first; j < run.end; ++j) {
+      const Reserved& b = bodies_[static_cast<size_t>(j)];
+      const vec2 d = c - b.volume.center_m;
+      const float r = reach + b.reach_m;
+      if (glm::dot(d, d) < r * r && footprints_overlap(a.volume, b.volume, clearance_m_)) return true;
+    }
   }
   return false;
 }
