@@ -477,11 +477,34 @@ void Server::send_tree(Session& s) {
   sessions_.send_sealed(s, tree_summary_.write(sessions_.writer(), g->avatar->tree(), tick_, s.avatar_id));
 }
 
+// Each client gets snapshot_hz snapshots a second on its own phase (its avatar id), so every tick
+// serves about snapshot_hz / tick_hz of the clients, rather than all of them on two ticks of three
+// and none on the third: the send phase then costs the same every tick and the look-ahead budget,
+// sized on the ticks before, fits (docs/SERVER.md "The tick"). A client's snapshots come as before
+// (20 Hz: 33, 33 and 67 ms apart); snapshot numbers count the ticks that gathered one, so a
+// client numbers its snapshots one by one all the same (SnapshotReceiver::snapshot).
+uint64_t Server::snapshots_by(uint32_t tick, uint32_t avatar_id) const {
+  const auto hz = static_cast<uint64_t>(std::max(config_.tick_hz, 1));
+  const uint64_t phase = avatar_id % hz;
+  return (tick + phase) * static_cast<uint64_t>(std::clamp(config_.snapshot_hz, 1, config_.tick_hz)) / hz;
+}
+
 void Server::send_snapshots(Clock::time_point now) {
-  snapshot_accumulator_ += static_cast<double>(config_.snapshot_hz) / config_.tick_hz;
-  if (snapshot_accumulator_ < 1.0) return;
-  snapshot_accumulator_ -= 1.0;
-  ++snapshot_tick_;
+  snapshot_receivers_.clear();
+  for (Session& s : sessions_.sessions()) {
+    const uint64_t served = snapshots_by(tick_, s.avatar_id);
+    if (served == snapshots_by(tick_ - 1, s.avatar_id)) continue;  // not this client's tick
+    const int index = roster_.index_of(s.avatar_id);  // every session has its avatar (on_join)
+    assert(index >= 0);
+    // Far avatars in every far_every-th of the client's own snapshots, staggered by client.
+    const bool far_due =
+        config_.far_every > 0 && (served + s.avatar_id) % static_cast<uint64_t>(config_.far_every) == 0;
+    snapshot_receivers_.push_back({static_cast<uint32_t>(served), static_cast<uint32_t>(index), s.avatar_id,
+                                   s.last_input_seq, s.echo_client_time_ms, far_due, &s.endpoint, &s.sealer,
+                                   &s.sent_views});
+  }
+  if (snapshot_receivers_.empty()) return;
+  ++snapshots_gathered_;
   snapshot_states_.clear();
   snapshot_terrain_.clear();
   terrain_before_.clear();
@@ -510,13 +533,12 @@ void Server::send_snapshots(Clock::time_point now) {
         0);
   }
   terrain_before_.push_back(static_cast<uint32_t>(snapshot_terrain_.size()));
-  snapshot_archive_.start(snapshot_tick_, static_cast<uint32_t>(tick_)).avatars.assign(snapshot_states_.begin(),
-                                                                                        snapshot_states_.end());
+  protocol::SnapshotArchive::Slot& archived = snapshot_archive_.start(snapshots_gathered_, static_cast<uint32_t>(tick_));
+  archived.avatars.assign(snapshot_states_.begin(), snapshot_states_.end());
   collect_fighter_poses();
   const bool interest = config_.interest_radius_m > 0;
   if (interest) interest_grid_.build(snapshot_positions_, config_.interest_radius_m);
   SnapshotFrame frame;
-  frame.snapshot = snapshot_tick_;
   frame.server_tick = static_cast<uint32_t>(tick_);
   frame.server_ms = static_cast<uint32_t>(ms_between(started_, now));
   frame.states = snapshot_states_;
@@ -529,15 +551,8 @@ void Server::send_snapshots(Clock::time_point now) {
   frame.interest = interest ? &interest_grid_ : nullptr;
   frame.interest_radius_m = config_.interest_radius_m;
   frame.far_radius_m = config_.far_radius_m;
-  frame.far_every = config_.far_every;
+  frame.archived = &archived;
   frame.archive = &snapshot_archive_;
-  snapshot_receivers_.clear();
-  for (Session& s : sessions_.sessions()) {
-    const int index = roster_.index_of(s.avatar_id);  // every session has its avatar (on_join)
-    assert(index >= 0);
-    snapshot_receivers_.push_back({static_cast<uint32_t>(index), s.avatar_id, s.last_input_seq, s.echo_client_time_ms,
-                                   &s.endpoint, &s.sealer, &s.sent_views});
-  }
   // Clients in parallel on the look-ahead workers, each worker with its own builder and batch.
   workers_->run(static_cast<int>(snapshot_receivers_.size()), [this, &frame](int item, int worker) {
     snapshot_builders_[static_cast<size_t>(worker)]->serve(frame, snapshot_receivers_[static_cast<size_t>(item)],

@@ -120,6 +120,8 @@ class Server : private SessionEvents {
   void animate_fighters(int64_t frames_due);  // server_fighters.cpp
   void advance_terrain(TickRecord& record);   // server_terrain.cpp
   void send_snapshots(Clock::time_point now);
+  /// Snapshots the client of `avatar_id` is due by `tick` (it is served when this moves on).
+  uint64_t snapshots_by(uint32_t tick, uint32_t avatar_id) const;
   void check_contacts();
   void finish_tick(TickRecord& record, const StageTimer& timer);
 
@@ -206,7 +208,7 @@ class Server : private SessionEvents {
   std::vector<vec2> snapshot_positions_;             ///< Per snapshot avatar: where it stands (interest).
   InterestGrid interest_grid_;
   std::vector<BodyVolume> contact_bodies_;           ///< check_contacts: this frame's bodies (reused).
-  /// The avatars of the last 64 snapshots, once for every client (sent_views.hpp).
+  /// The avatars of the last 128 snapshots gathered, once for every client (sent_views.hpp).
   protocol::SnapshotArchive snapshot_archive_;
   std::vector<SnapshotReceiver> snapshot_receivers_;                ///< This snapshot's clients (reused).
   std::vector<std::unique_ptr<SnapshotBuilder>> snapshot_builders_;  ///< One per look-ahead worker.
@@ -230,8 +232,7 @@ class Server : private SessionEvents {
   std::unique_ptr<AgonesSdk> agones_;      ///< After last_tick_ns_: its thread reads it until it stops.
   std::string admin_token_;
   uint32_t next_strike_event_ = 1;
-  double snapshot_accumulator_ = 0;
-  uint32_t snapshot_tick_ = 0;
+  uint32_t snapshots_gathered_ = 0;  ///< Ticks that gathered a snapshot: the number of the newest.
   uint32_t next_overrun_log_tick_ = 0;
   TickStats stats_;
   std::atomic<bool> stop_requested_{false};

@@ -6,8 +6,8 @@ namespace foresight::server {
 
 void SnapshotBuilder::serve(const SnapshotFrame& frame, const SnapshotReceiver& to, protocol::UdpSocket& socket) {
   build_view(frame, to);
-  to.sent_views->references(*frame.archive, view_states_, frame.snapshot, references_);
-  encoder_.plan(view_states_, frame.snapshot, frame.server_tick, references_);
+  to.sent_views->references(*frame.archive, view_states_, to.snapshot, references_);
+  encoder_.plan(view_states_, to.snapshot, frame.server_tick, references_);
   plan_parts(frame);
   const auto parts = static_cast<uint8_t>(parts_.size());
   for (size_t part = 0; part < parts_.size(); ++part) {
@@ -34,13 +34,13 @@ void SnapshotBuilder::serve(const SnapshotFrame& frame, const SnapshotReceiver& 
     if (plan.events && !frame.events.empty())
       events = fbb.CreateVectorOfStructs(frame.events.data(), frame.events.size());
     const auto inner = writer_.finish(wire::CreateSnapshot(
-        fbb, frame.snapshot, static_cast<uint8_t>(part), parts, to.ack_input, to.echo_client_time_ms, frame.server_ms,
+        fbb, to.snapshot, static_cast<uint8_t>(part), parts, to.ack_input, to.echo_client_time_ms, frame.server_ms,
         fighters, events, terrain_bodies, static_cast<uint16_t>(plan.avatars_end - plan.avatars_begin), avatar_bits));
     batch_.add(socket, to.sealer->seal(seal_writer_, inner), *to.endpoint);
   }
   // What was sent (all of the view unless it ran past the 255 parts), for later references.
   const size_t sent = parts_.back().avatars_end;
-  to.sent_views->record(frame.snapshot, frame.states.size(), std::span(view_index_).first(sent),
+  to.sent_views->record(to.snapshot, *frame.archived, std::span(view_index_).first(sent),
                         std::span(view_far_).first(sent));
   avatars_sent_ += sent;
   avatars_referenced_ += encoder_.referenced();
@@ -57,8 +57,7 @@ SnapshotBuilder::Counts SnapshotBuilder::take_counts() {
 void SnapshotBuilder::build_view(const SnapshotFrame& frame, const SnapshotReceiver& to) {
   const auto n = static_cast<uint32_t>(frame.states.size());
   if (frame.interest != nullptr) {
-    const bool far_due = frame.far_every > 0 && (frame.snapshot + to.avatar_id) % static_cast<uint32_t>(frame.far_every) == 0;
-    select_interest(*frame.interest, frame.positions, to.index, frame.interest_radius_m, far_due, frame.far_radius_m,
+    select_interest(*frame.interest, frame.positions, to.index, frame.interest_radius_m, to.far_due, frame.far_radius_m,
                     view_index_, view_far_);
   } else {
     view_index_.resize(n);

@@ -29,7 +29,6 @@ struct FighterPoseOut {
 
 /// One snapshot, as every client's view is cut from it.
 struct SnapshotFrame {
-  uint32_t snapshot = 0;     ///< Snapshot::tick.
   uint32_t server_tick = 0;
   uint32_t server_ms = 0;
   std::span<const wire::AvatarState> states;   ///< Every avatar, by id (world flags).
@@ -41,16 +40,18 @@ struct SnapshotFrame {
   std::span<const wire::StrikeEventState> events;
   const InterestGrid* interest = nullptr;  ///< Built with interest_radius_m; nullptr: everyone.
   float interest_radius_m = 0, far_radius_m = 0;
-  int far_every = 0;
-  const protocol::SnapshotArchive* archive = nullptr;  ///< Holds this snapshot already.
+  const protocol::SnapshotArchive::Slot* archived = nullptr;  ///< This snapshot in the archive.
+  const protocol::SnapshotArchive* archive = nullptr;          ///< It and the ones before.
 };
 
 /// One client the snapshot goes to; a client is served by one worker at a time.
 struct SnapshotReceiver {
-  uint32_t index = 0;  ///< Its own avatar in SnapshotFrame::states.
+  uint32_t snapshot = 0;  ///< Snapshot::tick: its own count of the snapshots it got, one up each.
+  uint32_t index = 0;     ///< Its own avatar in SnapshotFrame::states.
   uint32_t avatar_id = 0;
   uint32_t ack_input = 0;
   uint32_t echo_client_time_ms = 0;
+  bool far_due = false;  ///< Its far avatars go in this one (interest.hpp).
   const protocol::Endpoint* endpoint = nullptr;
   protocol::Sealer* sealer = nullptr;
   protocol::SentViews* sent_views = nullptr;

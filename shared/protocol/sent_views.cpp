@@ -27,10 +27,12 @@ size_t SnapshotArchive::bytes() const {
   return n;
 }
 
-void SentViews::record(uint32_t snapshot, size_t archived, std::span<const uint32_t> indices,
+void SentViews::record(uint32_t snapshot, const SnapshotArchive::Slot& archive_slot, std::span<const uint32_t> indices,
                        std::span<const uint8_t> far) {
-  Slot& s = slots_[snapshot % SnapshotArchive::kSlots];
+  const size_t archived = archive_slot.avatars.size();
+  Slot& s = slots_[snapshot % slots_.size()];
   s.snapshot = snapshot;
+  s.archived_as = archive_slot.snapshot;
   s.valid = true;
   s.acknowledged = false;
   if (s.bits.capacity() == 0 && !spare_bits_.empty()) {  // an acknowledged snapshot's storage
@@ -47,9 +49,10 @@ void SentViews::record(uint32_t snapshot, size_t archived, std::span<const uint3
 }
 
 void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
-  Slot& s = slots_[snapshot % SnapshotArchive::kSlots];
-  const SnapshotArchive::Slot* a = archive.find(snapshot);
-  if (!s.valid || s.snapshot != snapshot || s.acknowledged || a == nullptr) return;
+  Slot& s = slots_[snapshot % slots_.size()];
+  if (!s.valid || s.snapshot != snapshot || s.acknowledged) return;
+  const SnapshotArchive::Slot* a = archive.find(s.archived_as);
+  if (a == nullptr) return;
   s.acknowledged = true;
   // Merge the snapshot's view (its archived avatars whose bit is set, in id order) into newest_
   // (by id), keeping per id the newer snapshot (acknowledgements may come out of order) and
@@ -102,10 +105,10 @@ void SentViews::references(const SnapshotArchive& archive, std::span<const wire:
     const uint32_t n = newest_[k].snapshot, back = snapshot - n;
     const bool far = newest_[k].far != 0;
     const uint32_t index = newest_[k].index;
-    const Slot& s = slots_[n % SnapshotArchive::kSlots];
-    const SnapshotArchive::Slot* a = archive.find(n);
-    if (back == 0 || back > kMaxReferenceBack || !s.valid || !s.acknowledged || s.snapshot != n || a == nullptr)
-      continue;
+    const Slot& s = slots_[n % slots_.size()];
+    if (back == 0 || back > kMaxReferenceBack || !s.valid || !s.acknowledged || s.snapshot != n) continue;
+    const SnapshotArchive::Slot* a = archive.find(s.archived_as);
+    if (a == nullptr) continue;
     if (index >= a->avatars.size() || a->avatars[index].id() != id) continue;
     const wire::AvatarState* it = &a->avatars[index];
     AvatarReference& r = out[i];
@@ -126,10 +129,11 @@ size_t SentViews::bytes() const {
 }
 
 void WholeViewSender::remember(uint32_t snapshot, uint32_t server_tick, std::span<const wire::AvatarState> view) {
-  archive_.start(snapshot, server_tick).avatars.assign(view.begin(), view.end());
+  SnapshotArchive::Slot& archived = archive_.start(snapshot, server_tick);
+  archived.avatars.assign(view.begin(), view.end());
   indices_.resize(view.size());
   for (size_t i = 0; i < view.size(); ++i) indices_[i] = static_cast<uint32_t>(i);
-  views_.record(snapshot, view.size(), indices_, {});
+  views_.record(snapshot, archived, indices_, {});
 }
 
 void WholeViewSender::plan(AvatarDeltaEncoder& encoder, std::span<const wire::AvatarState> view, uint32_t snapshot,

@@ -1,6 +1,6 @@
 #pragma once
 // The sender's memory of the snapshots it sent, for the packed avatars' references
-// (avatar_delta.hpp), sized in time: 64 snapshots, 3.2 s at 20 Hz, so delta coding survives a
+// (avatar_delta.hpp), sized in time: a receiver's last 64 snapshots, 3.2 s at 20 Hz, so delta coding survives a
 // round trip of 2 s and more.
 //
 // Every receiver's view of a snapshot is a subset of the same avatars, differing only in the
@@ -22,11 +22,14 @@
 
 namespace foresight::protocol {
 
-/// The avatars of the last kSlots snapshots sent, by snapshot number, as the world had them
-/// (without per-receiver flags).
+/// The avatars of the last kSlots snapshots gathered, by their number in the archive, as the world
+/// had them (without per-receiver flags). A receiver numbers the snapshots it gets one by one
+/// (Snapshot::tick) and need not get every one gathered (the server serves each client on its own
+/// ticks), so the archive keeps twice as many as a receiver's references reach back: 63 of a
+/// receiver's snapshots span up to 126 gathered at 20 Hz snapshots and 30 Hz ticks (95).
 class SnapshotArchive {
  public:
-  static constexpr uint32_t kSlots = AvatarHistory::kSlots;
+  static constexpr uint32_t kSlots = 2 * AvatarHistory::kSlots;
   struct Slot {
     uint32_t snapshot = 0;
     uint32_t server_tick = 0;
@@ -51,10 +54,11 @@ class SentViews {
  public:
   /// The receiver's own avatar: the one sent with kAvatarYours.
   void set_owner(uint32_t avatar_id) { owner_ = avatar_id; }
-  /// Records the view of `snapshot`: the archived avatars at `indices` (into the archive's slot of
-  /// `snapshot`, `archived` avatars long), `far[k]` non-zero for those sent with kAvatarFar
-  /// (empty: none).
-  void record(uint32_t snapshot, size_t archived, std::span<const uint32_t> indices, std::span<const uint8_t> far);
+  /// Records the view the receiver got as its `snapshot` (its own numbering): the avatars of
+  /// `archived` (the archive's slot it was cut from) at `indices`, `far[k]` non-zero for those
+  /// sent with kAvatarFar (empty: none).
+  void record(uint32_t snapshot, const SnapshotArchive::Slot& archived, std::span<const uint32_t> indices,
+              std::span<const uint8_t> far);
   /// The receiver holds `snapshot` whole (archived in `archive`): later views may be coded
   /// against it. Notes, per avatar, the newest acknowledged snapshot holding it.
   void acknowledge(const SnapshotArchive& archive, uint32_t snapshot);
@@ -66,14 +70,15 @@ class SentViews {
 
  private:
   struct Slot {
-    uint32_t snapshot = 0;
+    uint32_t snapshot = 0;     ///< The receiver's number.
+    uint32_t archived_as = 0;  ///< The archive's number of the snapshot it was cut from.
     bool valid = false;
     bool acknowledged = false;
     /// Archive index i: bit 2i in view, bit 2i + 1 far. Empty once acknowledged (merged into
     /// newest_, the storage back in spare_bits_).
     std::vector<uint64_t> bits;
   };
-  std::array<Slot, SnapshotArchive::kSlots> slots_;
+  std::array<Slot, AvatarHistory::kSlots> slots_;  ///< By the receiver's number.
   std::vector<std::vector<uint64_t>> spare_bits_;  ///< Bit sets of acknowledged snapshots, for reuse.
   uint32_t owner_ = 0;
   /// By id: the newest acknowledged snapshot that held the avatar, where in that snapshot's
@@ -82,8 +87,8 @@ class SentViews {
   /// snapshots for the far ones that come every few, no search of the archived snapshot.
   struct Newest {
     uint32_t id = 0;
-    uint32_t snapshot = 0;
-    uint32_t index : 31 = 0;  ///< In the archive's slot of `snapshot`.
+    uint32_t snapshot = 0;    ///< The receiver's number.
+    uint32_t index : 31 = 0;  ///< In the archive's slot `snapshot` was cut from.
     uint32_t far : 1 = 0;
   };
   std::vector<Newest> newest_;

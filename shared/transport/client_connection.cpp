@@ -352,6 +352,7 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     if (has_snapshot_) snapshot_interval_ms_.add(ms_between(last_new_tick_at_, now));
     has_snapshot_ = true;
     snapshot_tick_ = tick;
+    snapshot_server_ms_ = m.server_time_ms();
     snapshot_parts_ = parts;
     snapshot_parts_seen_.reset();
     avatars_.clear();

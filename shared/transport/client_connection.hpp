@@ -206,6 +206,9 @@ class ClientConnection {
   // it; parts of older ticks are ignored.
   bool has_snapshot() const { return has_snapshot_; }
   uint32_t snapshot_tick() const { return snapshot_tick_; }
+  /// The server's clock (ms since it started) when it gathered the newest snapshot: snapshot
+  /// numbers are each client's own count, so this is what says when two clients saw the same world.
+  uint32_t snapshot_server_ms() const { return snapshot_server_ms_; }
   /// The newest snapshot received whole (every part), which Inputs acknowledge; 0 before one.
   uint32_t acked_snapshot() const { return acked_snapshot_; }
   int snapshot_parts() const { return snapshot_parts_; }
@@ -305,6 +308,7 @@ class ClientConnection {
   // Snapshots.
   bool has_snapshot_ = false;
   uint32_t snapshot_tick_ = 0;
+  uint32_t snapshot_server_ms_ = 0;
   int snapshot_parts_ = 0;
   std::bitset<256> snapshot_parts_seen_;
   std::vector<wire::AvatarState> avatars_;

@@ -258,10 +258,11 @@ def run(server):
     check(b.state == "connected" and b.echo_ms is not None, "the heartbeat-only client stays in session")
 
     section("packed avatars: the acknowledging client against the whole-state client")
-    common = sorted(set(a.keep_all) & set(b.keep_all))
+    # The same world by the server's time: each client numbers its own snapshots.
+    common = sorted(set(a.at_server_ms) & set(b.at_server_ms))
     mismatches = []
     for t in common:
-        va, vb = a.keep_all[t], b.keep_all[t]
+        va, vb = a.at_server_ms[t], b.at_server_ms[t]
         if set(va) != set(vb):
             mismatches.append((t, "ids", sorted(va), sorted(vb)))
             continue
@@ -272,12 +273,13 @@ def run(server):
                     x, y = x & ~fc.AVATAR_YOURS, y & ~fc.AVATAR_YOURS
                 if x != y:
                     mismatches.append((t, i, f, x, y))
-    check(len(common) >= 30, "snapshots decoded by both", len(common))
+    # About a third of the ticks serve both clients (each is served on two of three): ~10 a second.
+    check(len(common) >= 20, "snapshots decoded by both", len(common))
     check(not mismatches, "every avatar of every common snapshot equal, field by field", mismatches[:5])
-    both = [t for t in common if acc["avatar"] in a.keep_all[t] and accb["avatar"] in a.keep_all[t]]
-    check(len(both) >= 30 and all(a.keep_all[t][acc["avatar"]]["flags"] & fc.AVATAR_YOURS and
-                                  not b.keep_all[t][acc["avatar"]]["flags"] & fc.AVATAR_YOURS and
-                                  b.keep_all[t][accb["avatar"]]["flags"] & fc.AVATAR_YOURS for t in both),
+    both = [t for t in common if acc["avatar"] in a.at_server_ms[t] and accb["avatar"] in a.at_server_ms[t]]
+    check(len(both) >= 20 and all(a.at_server_ms[t][acc["avatar"]]["flags"] & fc.AVATAR_YOURS and
+                                  not b.at_server_ms[t][acc["avatar"]]["flags"] & fc.AVATAR_YOURS and
+                                  b.at_server_ms[t][accb["avatar"]]["flags"] & fc.AVATAR_YOURS for t in both),
           "kAvatarYours set on each receiver's own avatar only", len(both))
     check(a.kinds.get("same_predicted", 0) > 0 and a.kinds.get("new_segment", 0) > 0,
           "the acknowledging client got delta-coded records (same play-through and new segments)", a.kinds)

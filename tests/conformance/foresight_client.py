@@ -457,6 +457,7 @@ class Client:
         self.kinds = {}                # packed records by kind
         self.ref_counts = []           # R of each part decoded
         self.keep_all = {}             # tick -> {id: avatar}: every whole snapshot, for comparisons
+        self.at_server_ms = {}         # server_time_ms -> the same: ticks are each client's own count
         # Input
         self.dir = (0, 0)
         self.camera_yaw = 0
@@ -667,6 +668,7 @@ class Client:
                 for a in avs:
                     whole[a["id"]] = a
             self.keep_all[tick] = whole
+            self.at_server_ms[m.ServerTimeMs()] = whole
             self.whole_order.append(tick)
             if self.acknowledge:
                 self.history[tick] = whole

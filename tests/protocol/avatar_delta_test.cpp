@@ -148,9 +148,9 @@ TEST(AvatarDelta, AcknowledgementsOutOfOrderStillReferToTheNewest) {
   SentViews views;
   const std::vector<uint32_t> both{0, 1}, first{0};
   archive.start(3, 3).avatars = {State(1, 0, 0, 1, 1, 1, 1, 0, 0), State(2, 0, 0, 1, 1, 1, 1, 0, 0)};
-  views.record(3, 2, both, {});
+  views.record(3, *archive.find(3), both, {});
   archive.start(4, 4).avatars = {State(1, 0, 0, 1, 1, 1, 2, 0, 0), State(2, 0, 0, 1, 1, 1, 2, 0, 0)};
-  views.record(4, 2, first, {});  // avatar 2 was not in this receiver's view of 4
+  views.record(4, *archive.find(4), first, {});  // avatar 2 was not in this receiver's view of 4
   views.acknowledge(archive, 4);
   views.acknowledge(archive, 3);  // late
   views.acknowledge(archive, 3);  // and repeated
@@ -177,7 +177,7 @@ TEST(AvatarDelta, ReferencesCarryTheFlagsTheReceiverWasSent) {
                                  State(3, 0, 0, 1, 1, 1, 1, 0, 0)};
   const std::vector<uint32_t> indices{0, 1, 2};
   const std::vector<uint8_t> far{1, 0, 0};
-  views.record(7, 3, indices, far);
+  views.record(7, *archive.find(7), indices, far);
   views.acknowledge(archive, 7);
   std::vector<AvatarReference> refs;
   views.references(archive, archive.find(7)->avatars, 8, refs);
@@ -201,8 +201,8 @@ TEST(AvatarDelta, AReceiverHoldsViewBitsOnlyForSnapshotsInFlight) {
   for (uint32_t snapshot = 1; snapshot <= 100; ++snapshot) {
     auto& avatars = archive.start(snapshot, snapshot).avatars;
     for (uint32_t id = 1; id <= kArchived; ++id) avatars.emplace_back(id, 0, 0, 1, 1, 1, 1, 0, 0);
-    acking.record(snapshot, kArchived, indices, far);
-    silent.record(snapshot, kArchived, indices, far);
+    acking.record(snapshot, *archive.find(snapshot), indices, far);
+    silent.record(snapshot, *archive.find(snapshot), indices, far);
     if (snapshot > 2) acking.acknowledge(archive, snapshot - 2);
     if (snapshot == 3) silent.acknowledge(archive, 1);
     if (snapshot == 50) {
@@ -374,13 +374,13 @@ TEST(AvatarDelta, AWarmSenderAllocatesNothingPerSnapshot) {
   std::vector<State> view;
   for (uint32_t id = 1; id <= 120; ++id) view.emplace_back(id, int32_t(id) * 100, 0, 3, 4, 5, 0, 0, 0);
   int allocations = 0;
-  for (uint32_t snapshot = 1; snapshot <= 100; ++snapshot) {
+  for (uint32_t snapshot = 1; snapshot <= 200; ++snapshot) {
     for (size_t i = 0; i < view.size(); ++i) {
       const State& a = view[i];
       view[i] = (snapshot + i) % 9 == 0 ? State(a.id(), a.start_x_mm() + 600, 0, 3, 4, 5, 0, 0, 0)
                                         : State(a.id(), a.start_x_mm(), 0, 3, 4, 5, static_cast<uint8_t>(a.frame() + 1), 0, 0);
     }
-    test::AllocationCount counting(snapshot > 70);  // the 64 slots and the lists have grown by then
+    test::AllocationCount counting(snapshot > 140);  // the archive's 128 slots and the lists have grown by then
     history.plan(encoder, view, snapshot, snapshot);
     encoder.write_part(0, view.size(), bytes);
     history.remember(snapshot, snapshot, view);
