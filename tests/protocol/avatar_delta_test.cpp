@@ -167,6 +167,29 @@ TEST(AvatarDelta, AcknowledgementsOutOfOrderStillReferToTheNewest) {
   EXPECT_FALSE(refs[0].found || refs[1].found);
 }
 
+// A receiver numbers the snapshots it gets one by one, though the server serves it only some of
+// the snapshots it gathers: its acknowledgements and references are in its own numbers, the
+// states come from the archived snapshot each was cut from.
+TEST(AvatarDelta, AReceiverServedEveryFewSnapshotsCountsInItsOwnNumbers) {
+  SnapshotArchive archive;
+  SentViews views;
+  const std::vector<uint32_t> only{0};
+  // Archived 10..15; the receiver gets 10, 12, 13 and 15 as its 1, 2, 3 and 4.
+  const uint32_t served[] = {10, 12, 13, 15};
+  for (uint32_t a = 10; a <= 15; ++a) archive.start(a, 100 + a).avatars = {State(1, 0, 0, 1, 1, 1, static_cast<uint8_t>(a), 0, 0)};
+  for (uint32_t k = 0; k < 4; ++k) views.record(k + 1, *archive.find(served[k]), only, {});
+  views.acknowledge(archive, 2);  // its 2: archived 12
+  std::vector<AvatarReference> refs;
+  views.references(archive, archive.find(15)->avatars, 5, refs);
+  ASSERT_TRUE(refs[0].found);
+  EXPECT_EQ(refs[0].snapshot, 2u) << "in the receiver's numbers (3 back from its 5)";
+  EXPECT_EQ(refs[0].server_tick, 112u) << "the archived snapshot's tick";
+  EXPECT_EQ(refs[0].state.frame(), 12u) << "the archived snapshot's state";
+  views.acknowledge(archive, 12);  // not one of its numbers: nothing happens
+  views.references(archive, archive.find(15)->avatars, 5, refs);
+  EXPECT_EQ(refs[0].snapshot, 2u);
+}
+
 // The receiver's own avatar comes back flagged kAvatarYours, the far ones kAvatarFar, as they were
 // sent, though the archive holds each avatar once without them.
 TEST(AvatarDelta, ReferencesCarryTheFlagsTheReceiverWasSent) {
