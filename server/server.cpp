@@ -401,8 +401,9 @@ void Server::on_message(Session& s, const wire::Packet& message) {
 }
 
 void Server::on_input(Session& s, const wire::Input& m) {
-  // The client holds that snapshot whole: later ones may code its avatars against it.
-  s.sent_views.acknowledge(snapshot_archive_, m.ack_snapshot());
+  // The client holds that snapshot whole: later ones may code its avatars against it (merged
+  // when the client is next served, on a worker).
+  s.sent_views.queue_acknowledgement(snapshot_archive_, m.ack_snapshot());
   s.echo_client_time_ms = m.client_time_ms();
   const auto* commands = m.commands();
   if (commands == nullptr || commands->size() == 0) return;

@@ -6,6 +6,7 @@ namespace foresight::server {
 
 void SnapshotBuilder::serve(const SnapshotFrame& frame, const SnapshotReceiver& to, protocol::UdpSocket& socket) {
   build_view(frame, to);
+  to.sent_views->acknowledge_queued(*frame.archive);
   to.sent_views->references(*frame.archive, view_states_, to.snapshot, references_);
   encoder_.plan(view_states_, to.snapshot, frame.server_tick, references_);
   plan_parts(frame);

@@ -165,6 +165,7 @@ AvatarDecodeStatus decode_avatars(std::span<const uint8_t> packed, uint32_t coun
   struct Ref {
     uint32_t ticks = 0;
     const AvatarHistory::Slot* slot = nullptr;
+    size_t cursor = 0;  ///< Into slot->avatars: ids come in increasing order, so it only moves on.
   };
   std::array<Ref, 7> refs{};
   const int num_refs = static_cast<int>(in.get(3));
@@ -191,8 +192,13 @@ AvatarDecodeStatus decode_avatars(std::span<const uint8_t> packed, uint32_t coun
     int32_t transition = -1, x = 0, z = 0;
     uint8_t frame = 0, flags = 0;
     if (ref >= 0) {
-      const Ref& rf = refs[static_cast<size_t>(ref)];
-      const wire::AvatarState* r = rf.slot ? rf.slot->find(static_cast<uint32_t>(id)) : nullptr;
+      Ref& rf = refs[static_cast<size_t>(ref)];
+      const wire::AvatarState* r = nullptr;
+      if (rf.slot != nullptr) {
+        const auto& held = rf.slot->avatars;
+        while (rf.cursor < held.size() && held[rf.cursor].id() < id) ++rf.cursor;
+        if (rf.cursor < held.size() && held[rf.cursor].id() == id) r = &held[rf.cursor];
+      }
       if (!r) {
         out.resize(first);
         return AvatarDecodeStatus::kMissingBaseline;

@@ -9,8 +9,10 @@
 //
 // The reader never reads past its span: a read beyond it returns 0 and sets failed(), which the
 // caller checks once at the end of what it decodes.
+#include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -29,11 +31,13 @@ class BitWriter {
   void put(uint32_t value, int bits) {
     if (bits == 0) return;
     acc_ |= (static_cast<uint64_t>(value) & ((uint64_t{1} << bits) - 1)) << fill_;
-    fill_ += bits;
-    while (fill_ >= 8) {
-      out_.push_back(static_cast<uint8_t>(acc_));
-      acc_ >>= 8;
-      fill_ -= 8;
+    fill_ += bits;  // < 64: fill_ < 32 before, bits <= 32
+    if (fill_ >= 32) {  // four bytes at a time, not a push_back per byte
+      const uint8_t word[4] = {static_cast<uint8_t>(acc_), static_cast<uint8_t>(acc_ >> 8),
+                               static_cast<uint8_t>(acc_ >> 16), static_cast<uint8_t>(acc_ >> 24)};
+      out_.insert(out_.end(), word, word + 4);
+      acc_ >>= 32;
+      fill_ -= 32;
     }
     used_ += static_cast<size_t>(bits);
   }
@@ -56,7 +60,7 @@ class BitWriter {
   void put_signed_wide(int32_t v) { put_wide(zigzag(v)); }
   /// Writes the last, partial byte (zero-padded). Nothing may be put after it.
   void finish() {
-    if (fill_ > 0) out_.push_back(static_cast<uint8_t>(acc_));
+    for (; fill_ > 0; fill_ -= 8, acc_ >>= 8) out_.push_back(static_cast<uint8_t>(acc_));
     acc_ = 0;
     fill_ = 0;
   }
@@ -88,22 +92,30 @@ class BitReader {
       pos_ = size_;
       return 0;
     }
-    const size_t first = pos_ >> 3;
-    uint64_t window = 0;
-    for (size_t i = 0; i < 5 && first + i < in_.size(); ++i) window |= static_cast<uint64_t>(in_[first + i]) << (8 * i);
-    const uint32_t v = static_cast<uint32_t>((window >> (pos_ & 7u)) & ((uint64_t{1} << bits) - 1));
+    const uint32_t v = static_cast<uint32_t>(window() & ((uint64_t{1} << bits) - 1));
     pos_ += static_cast<size_t>(bits);
     return v;
   }
   bool get_bit() { return get(1) != 0; }
   /// 0 (and failed()) for a code longer than 64 bits or cut off.
   uint64_t get_gamma() {
+    // The zeros before the leading one, up to 32 at a time (not a bit at a time).
     int zeros = 0;
-    while (!get_bit()) {
-      if (failed_ || ++zeros > 63) {
+    for (;;) {
+      const int n = static_cast<int>(std::min<size_t>(size_ - pos_, 32));
+      if (n == 0) {
         failed_ = true;
         return 0;
       }
+      const uint32_t ahead = static_cast<uint32_t>(window() & ((uint64_t{1} << n) - 1));
+      const int z = ahead != 0 ? std::countr_zero(ahead) : n;
+      zeros += z;
+      pos_ += static_cast<size_t>(ahead != 0 ? z + 1 : z);
+      if (zeros > 63) {
+        failed_ = true;
+        return 0;
+      }
+      if (ahead != 0) break;
     }
     if (zeros > 32) {
       const uint64_t low = get(32);
@@ -135,6 +147,18 @@ class BitReader {
   size_t remaining_bits() const { return size_ - pos_; }
 
  private:
+  /// The bits from pos_ on, at least 32 of them where the input has them, the first in bit 0.
+  uint64_t window() const {
+    const size_t first = pos_ >> 3;
+    uint64_t w = 0;
+    if (std::endian::native == std::endian::little && first + 8 <= in_.size()) {
+      std::memcpy(&w, in_.data() + first, 8);  // one load (a byte loop stays eight)
+    } else {
+      for (size_t i = 0; first + i < in_.size(); ++i) w |= static_cast<uint64_t>(in_[first + i]) << (8 * i);
+    }
+    return w >> (pos_ & 7u);
+  }
+
   std::span<const uint8_t> in_;
   size_t size_ = 0;
   size_t pos_ = 0;

@@ -62,6 +62,13 @@ class SentViews {
   /// The receiver holds `snapshot` whole (archived in `archive`): later views may be coded
   /// against it. Notes, per avatar, the newest acknowledged snapshot holding it.
   void acknowledge(const SnapshotArchive& archive, uint32_t snapshot);
+  /// Notes that the receiver acknowledged `snapshot`, merged by acknowledge_queued(): the server
+  /// reads acknowledgements on the tick thread as inputs arrive and merges them (most of an
+  /// acknowledgement's cost) on the worker that serves the client next. A repeat of the newest
+  /// queued one is dropped; with the queue full, the oldest is merged now.
+  void queue_acknowledgement(const SnapshotArchive& archive, uint32_t snapshot);
+  /// acknowledge() of each queued snapshot, in the order they came.
+  void acknowledge_queued(const SnapshotArchive& archive);
   /// For each avatar of `view` (sorted by id), the newest acknowledged state the receiver holds of
   /// it, at most kMaxReferenceBack snapshots before `snapshot`, as it was sent (flags included).
   void references(const SnapshotArchive& archive, std::span<const wire::AvatarState> view, uint32_t snapshot,
@@ -80,6 +87,8 @@ class SentViews {
   };
   std::array<Slot, AvatarHistory::kSlots> slots_;  ///< By the receiver's number.
   std::vector<std::vector<uint64_t>> spare_bits_;  ///< Bit sets of acknowledged snapshots, for reuse.
+  std::array<uint32_t, 4> queued_{};  ///< Acknowledgements not merged yet, oldest first.
+  uint32_t num_queued_ = 0;
   uint32_t owner_ = 0;
   /// By id: the newest acknowledged snapshot that held the avatar, where in that snapshot's
   /// archive, and whether it went there as a far one (entries out of reach are dropped as

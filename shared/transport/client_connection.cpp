@@ -379,8 +379,9 @@ void ClientConnection::on_snapshot(const wire::Snapshot& m, TimePoint now) {
     // Whole: later snapshots may refer to it, so it is what we acknowledge.
     AvatarHistory::Slot& slot = history_.start(tick, 0);
     slot.avatars.assign(avatars_.begin(), avatars_.end());
-    std::sort(slot.avatars.begin(), slot.avatars.end(),
-              [](const wire::AvatarState& a, const wire::AvatarState& b) { return a.id() < b.id(); });
+    const auto by_id = [](const wire::AvatarState& a, const wire::AvatarState& b) { return a.id() < b.id(); };
+    if (!std::is_sorted(slot.avatars.begin(), slot.avatars.end(), by_id))  // parts in order: sorted already
+      std::sort(slot.avatars.begin(), slot.avatars.end(), by_id);
     slot.usable = true;
     acked_snapshot_ = tick;
   }

@@ -78,9 +78,14 @@ bool any_footprints_overlap(std::span<BodyVolume> bodies) {
   std::sort(bodies.begin(), bodies.end(), [](const BodyVolume& a, const BodyVolume& b) { return a.center_m.x < b.center_m.x; });
   for (size_t i = 0; i < bodies.size(); ++i) {
     const BodyVolume& a = bodies[i];
-    const float reach = a.reach_m() + widest;
-    for (size_t j = i + 1; j < bodies.size() && bodies[j].center_m.x - a.center_m.x < reach; ++j)
-      if (footprints_overlap(a, bodies[j])) return true;
+    const float reach_a = a.reach_m(), reach = reach_a + widest;
+    for (size_t j = i + 1; j < bodies.size() && bodies[j].center_m.x - a.center_m.x < reach; ++j) {
+      // Each footprint lies in the disc of its reach: discs apart (with a rounding slack), no
+      // overlap, and no segment distance to compute (most pairs in the x sweep are metres apart in z).
+      const vec2 d = bodies[j].center_m - a.center_m;
+      const float r = reach_a + bodies[j].reach_m() + 1e-3f;
+      if (glm::dot(d, d) < r * r && footprints_overlap(a, bodies[j])) return true;
+    }
   }
   return false;
 }

@@ -190,6 +190,43 @@ TEST(AvatarDelta, AReceiverServedEveryFewSnapshotsCountsInItsOwnNumbers) {
   EXPECT_EQ(refs[0].snapshot, 2u);
 }
 
+// Acknowledgements queued as inputs arrive and merged when the client is next served give the
+// references that acknowledging each at once gives; repeats are dropped, and a full queue merges
+// its oldest rather than losing it.
+TEST(AvatarDelta, QueuedAcknowledgementsMergeAsAcknowledgingEachAtOnce) {
+  SnapshotArchive archive;
+  SentViews at_once, queued;
+  for (uint32_t a = 1; a <= 8; ++a) {
+    // Avatar a only in snapshot a, avatar 10 in every one.
+    archive.start(a, a).avatars = {State(a, 0, 0, 1, 1, 1, static_cast<uint8_t>(a), 0, 0),
+                                   State(10, 0, 0, 1, 1, 1, static_cast<uint8_t>(a), 0, 0)};
+    const std::vector<uint32_t> both{0, 1};
+    at_once.record(a, *archive.find(a), both, {});
+    queued.record(a, *archive.find(a), both, {});
+  }
+  // Six distinct acknowledgements (one repeated, two out of order) through a queue of four.
+  for (const uint32_t ack : {2u, 2u, 1u, 4u, 3u, 6u, 5u}) {
+    at_once.acknowledge(archive, ack);
+    queued.queue_acknowledgement(archive, ack);
+  }
+  queued.acknowledge_queued(archive);
+  std::vector<State> view;
+  for (uint32_t id = 1; id <= 8; ++id) view.emplace_back(id, 0, 0, 1, 1, 1, 0, 0, 0);
+  view.emplace_back(10, 0, 0, 1, 1, 1, 0, 0, 0);
+  std::vector<AvatarReference> want, got;
+  at_once.references(archive, view, 9, want);
+  queued.references(archive, view, 9, got);
+  ASSERT_EQ(got.size(), want.size());
+  int found = 0;
+  for (size_t i = 0; i < view.size(); ++i) {
+    EXPECT_EQ(got[i].found, want[i].found) << "avatar " << view[i].id();
+    EXPECT_EQ(got[i].snapshot, want[i].snapshot) << "avatar " << view[i].id();
+    found += got[i].found;
+  }
+  EXPECT_EQ(found, 7) << "avatars 1-6 and 10 (from 6): 7 and 8 were never acknowledged";
+  EXPECT_EQ(got[8].snapshot, 6u);
+}
+
 // The receiver's own avatar comes back flagged kAvatarYours, the far ones kAvatarFar, as they were
 // sent, though the archive holds each avatar once without them.
 TEST(AvatarDelta, ReferencesCarryTheFlagsTheReceiverWasSent) {
