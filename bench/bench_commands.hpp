@@ -68,6 +68,16 @@ struct MotionQualityBenchOptions {
 };
 int bench_motion_quality(const MotionQualityBenchOptions& options);
 
+struct SnapshotBenchOptions {
+  int avatars = 1000;    ///< In the world.
+  int receivers = 200;   ///< Clients, each with its own view and history.
+  int view = 50;         ///< Avatars in each view (the interest radius's 8 m at 1000 on the field).
+  int snapshots = 200;   ///< Timed, after the warm-up.
+  unsigned long long seed = 1;
+  bool json = false;
+};
+int bench_snapshot(const SnapshotBenchOptions& options);
+
 struct LoadReportOptions {
   std::vector<std::string> inputs;  ///< Files whose last JSON line is foresight-bots --json output.
   std::string out_dir = "out/loadtest";

@@ -7,6 +7,7 @@
 //   foresight-bench fighter [--figure DIR] [--json]
 //   foresight-bench terrain [--seed 1] [--json]
 //   foresight-bench motion-quality [--scene maze] [--goal NAME] [--motions DIR] [--seeds 10] [--json]
+//   foresight-bench snapshot [--avatars 1000] [--receivers 200] [--view 50] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
 #include "library_build/motion_source_cli.hpp"
@@ -97,6 +98,15 @@ int main(int argc, char** argv) {
   mq->add_option("--max-seconds", quality.max_seconds, "Time cap of a run")->check(CLI::Range(1.0, 3600.0));
   mq->add_flag("--json", quality.json, "Print one JSON object as the last line");
 
+  SnapshotBenchOptions snapshot;
+  auto* sn = app.add_subcommand("snapshot", "Packed snapshot avatars: the server's coding and the client's decoding per avatar");
+  sn->add_option("--avatars", snapshot.avatars, "Avatars in the world")->check(CLI::Range(1, 100000));
+  sn->add_option("--receivers", snapshot.receivers, "Clients")->check(CLI::Range(1, 10000));
+  sn->add_option("--view", snapshot.view, "Avatars in each client's view")->check(CLI::Range(1, 100000));
+  sn->add_option("--snapshots", snapshot.snapshots, "Timed snapshots")->check(CLI::Range(1, 100000));
+  sn->add_option("--seed", snapshot.seed, "Seed of the world and the views");
+  sn->add_flag("--json", snapshot.json, "Print one JSON object as the last line");
+
   LoadReportOptions load;
   auto* lr = app.add_subcommand("load-report", "Table, CSV and chart from foresight-bots --json outputs (scripts/loadtest)");
   lr->add_option("inputs", load.inputs, "Files ending in a foresight-bots --json line")->required();
@@ -104,6 +114,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (*lr) return bench_load_report(load);
+  if (*sn) return bench_snapshot(snapshot);
   if (*mq) return bench_motion_quality(quality);
 #ifdef FORESIGHT_HAVE_CLIENT
   if (*cl) return bench_client(client);
