@@ -5,6 +5,20 @@
 
 namespace foresight::server {
 
+void TailEstimate::note(double ms) {
+  recent_[count_++ % recent_.size()] = ms;
+  mean_ = count_ == 1 ? ms : 0.9 * mean_ + 0.1 * ms;
+}
+
+double TailEstimate::ms() const {
+  const size_t n = std::min(count_, recent_.size());
+  if (n == 0) return 0;
+  std::array<double, 64> sorted = recent_;  // 64 values: a copy and a partial sort a tick
+  const size_t at = n * 9 / 10;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(at), sorted.begin() + static_cast<long>(n));
+  return std::max(mean_, sorted[at]);
+}
+
 LookaheadScheduler::LookaheadScheduler(const ServerConfig& config, const MotionLibrary& library,
                                        LookaheadWorkers& workers)
     : config_(config), library_(library), workers_(workers) {}
@@ -18,9 +32,9 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
     return;
   }
   const double period_ms = 1000.0 / config_.tick_hz;
-  const double budget_ms =
-      std::clamp(period_ms - ms_between(tick_start, now) - tail_ms_estimate_ - config_.tick_safety_margin_ms, 0.0,
-                 config_.lookahead_budget_ms);
+  const double budget_ms = std::clamp(
+      period_ms - ms_between(tick_start, now) - tail_.ms() - overrun_ms_ - config_.tick_safety_margin_ms, 0.0,
+      config_.lookahead_budget_ms);
   record.budget_ms = static_cast<float>(budget_ms);
   // Shared by need: a thin tree or a decision coming soon asks for more.
   weight_.resize(n);
@@ -74,6 +88,10 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
     expansions_[static_cast<size_t>(item)] = a.grow(budget).expansions;
   });
   record.lookahead_ms = static_cast<float>(ms_between(now, Clock::now()));
+  // Past the deadline the avatars left still take their new commands (a re-sort each) and the
+  // workers finish their last slice: about a millisecond at 1000 avatars, taken off the next budgets.
+  if (config_.expansions_per_avatar <= 0 && budget_ms > 0)
+    overrun_ms_ = 0.9 * overrun_ms_ + 0.1 * std::max(0.0, record.lookahead_ms - budget_ms);
   int64_t expansions = 0;
   int64_t nodes = 0;
   int min_nodes = INT_MAX;

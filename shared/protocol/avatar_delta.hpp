@@ -14,8 +14,9 @@
 // acknowledged, and the client acknowledges only snapshots it holds whole, so every reference can
 // be resolved; one that cannot (a client that lost its history) is an error, and the client then
 // keeps acknowledging its last whole snapshot until the server's references age out of the
-// history and it sends whole states again. Both histories hold 64 snapshots (3.2 s at 20 Hz), so
-// delta coding survives a round trip of 2 s and more.
+// history and it sends whole states again. Both histories hold the client's last 64 snapshots
+// (3.2 s at 20 Hz; the server's archive 128 of those it gathered, sent_views.hpp), so delta coding
+// survives a round trip of 2 s and more.
 //
 // Part format (BitWriter codes, bit_stream.hpp):
 //   S: width of segments (5 bits), T: width of transitions + 1 (6 bits)
