@@ -79,6 +79,7 @@ bool Server::start(const ServerConfig& config, std::string& error) {
   sessions.session_timeout_s = config_.session_timeout_s;
   if (!sessions_.open(config_.bind_address, config_.port, sessions, error)) return false;
   reservations_.configure(scene_.bounds);
+  snapshot_archive_ = protocol::SnapshotArchive(protocol::SnapshotArchive::slots_for(config_.tick_hz, config_.snapshot_hz));
   if (!plan_spawn_places(error)) return false;
   workers_ = std::make_unique<LookaheadWorkers>(config_.threads);
   scheduler_ = std::make_unique<LookaheadScheduler>(config_, library_, *workers_);
@@ -482,8 +483,8 @@ void Server::send_tree(Session& s) {
 // serves about snapshot_hz / tick_hz of the clients, rather than all of them on two ticks of three
 // and none on the third: the send phase then costs the same every tick and the look-ahead budget,
 // sized on the ticks before, fits (docs/SERVER.md "The tick"). A client's snapshots come as before
-// (20 Hz: 33, 33 and 67 ms apart); snapshot numbers count the ticks that gathered one, so a
-// client numbers its snapshots one by one all the same (SnapshotReceiver::snapshot).
+// (20 Hz: 33, 33 and 67 ms apart). The archive numbers the snapshots gathered; each client
+// numbers the ones it gets one by one (SnapshotReceiver::snapshot, this function's count).
 uint64_t Server::snapshots_by(uint32_t tick, uint32_t avatar_id) const {
   const auto hz = static_cast<uint64_t>(std::max(config_.tick_hz, 1));
   const uint64_t phase = avatar_id % hz;

@@ -208,7 +208,8 @@ class Server : private SessionEvents {
   std::vector<vec2> snapshot_positions_;             ///< Per snapshot avatar: where it stands (interest).
   InterestGrid interest_grid_;
   std::vector<BodyVolume> contact_bodies_;           ///< check_contacts: this frame's bodies (reused).
-  /// The avatars of the last 128 snapshots gathered, once for every client (sent_views.hpp).
+  /// The avatars of the last snapshots gathered, once for every client (sent_views.hpp), as many
+  /// as a client's references reach over at its snapshot rate.
   protocol::SnapshotArchive snapshot_archive_;
   std::vector<SnapshotReceiver> snapshot_receivers_;                ///< This snapshot's clients (reused).
   std::vector<std::unique_ptr<SnapshotBuilder>> snapshot_builders_;  ///< One per look-ahead worker.

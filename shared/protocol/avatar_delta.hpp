@@ -15,7 +15,7 @@
 // be resolved; one that cannot (a client that lost its history) is an error, and the client then
 // keeps acknowledging its last whole snapshot until the server's references age out of the
 // history and it sends whole states again. Both histories hold the client's last 64 snapshots
-// (3.2 s at 20 Hz; the server's archive 128 of those it gathered, sent_views.hpp), so delta coding
+// (3.2 s at 20 Hz; the server's archive as many of those it gathered as span them, sent_views.hpp), so delta coding
 // survives a round trip of 2 s and more.
 //
 // Part format (BitWriter codes, bit_stream.hpp):

@@ -7,8 +7,14 @@
 
 namespace foresight::protocol {
 
+uint32_t SnapshotArchive::slots_for(int tick_hz, int snapshot_hz) {
+  const auto ticks = static_cast<uint32_t>(std::max(tick_hz, 1));
+  const auto served = static_cast<uint32_t>(std::clamp(snapshot_hz, 1, static_cast<int>(ticks)));
+  return (AvatarHistory::kSlots * ticks + served - 1) / served;
+}
+
 SnapshotArchive::Slot& SnapshotArchive::start(uint32_t snapshot, uint32_t server_tick) {
-  Slot& s = slots_[snapshot % kSlots];
+  Slot& s = slots_[snapshot % slots_.size()];
   s.snapshot = snapshot;
   s.server_tick = server_tick;
   s.valid = true;
@@ -17,12 +23,12 @@ SnapshotArchive::Slot& SnapshotArchive::start(uint32_t snapshot, uint32_t server
 }
 
 const SnapshotArchive::Slot* SnapshotArchive::find(uint32_t snapshot) const {
-  const Slot& s = slots_[snapshot % kSlots];
+  const Slot& s = slots_[snapshot % slots_.size()];
   return s.valid && s.snapshot == snapshot ? &s : nullptr;
 }
 
 size_t SnapshotArchive::bytes() const {
-  size_t n = sizeof(*this);
+  size_t n = sizeof(*this) + slots_.capacity() * sizeof(Slot);
   for (const Slot& s : slots_) n += s.avatars.capacity() * sizeof(wire::AvatarState);
   return n;
 }
@@ -61,13 +67,9 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
   const auto in_reach = [&](const Newest& n) {
     return snapshot - n.snapshot <= kMaxReferenceBack || newer(n.snapshot, snapshot);
   };
-  thread_local std::vector<Newest> scratch;  // the thread's (not one per receiver)
-  // Written through a pointer: push_back on a thread_local vector reloaded and stored its end
-  // through the thread pointer for every entry (a quarter of this function's time).
-  const size_t bound = newest_.size() + a->avatars.size();
-  if (scratch.size() < bound) scratch.resize(bound);
-  Newest* const merged = scratch.data();
-  size_t m = 0, k = 0;
+  thread_local std::vector<Newest> merged;  // scratch, the thread's (not one per receiver)
+  merged.clear();
+  size_t k = 0;
   // Only the avatars in the view: the set "in view" bits (even bits), word by word. A view holds
   // a few dozen of the 1000 archived avatars; testing each archived one cost a tenth of the
   // server's time at 1000 players.
@@ -79,19 +81,19 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
       if (i >= a->avatars.size()) break;
       const uint32_t id = a->avatars[i].id();
       for (; k < newest_.size() && newest_[k].id < id; ++k)
-        if (in_reach(newest_[k])) merged[m++] = newest_[k];
+        if (in_reach(newest_[k])) merged.push_back(newest_[k]);
       Newest n{id, snapshot, static_cast<uint32_t>(i), static_cast<uint32_t>(s.bits[w] >> (bit + 1) & 1)};
       if (k < newest_.size() && newest_[k].id == id) {
         if (newer(newest_[k].snapshot, snapshot)) n = newest_[k];
         ++k;
       }
-      merged[m++] = n;
+      merged.push_back(n);
     }
   }
   for (; k < newest_.size(); ++k)
-    if (in_reach(newest_[k])) merged[m++] = newest_[k];
+    if (in_reach(newest_[k])) merged.push_back(newest_[k]);
   // newest_ keeps its own storage (assign, not swap): the scratch's capacity stays with the thread.
-  newest_.assign(merged, merged + m);
+  newest_.assign(merged.begin(), merged.end());
   spare_bits_.push_back(std::move(s.bits));
   s.bits = {};
 }

@@ -22,14 +22,17 @@
 
 namespace foresight::protocol {
 
-/// The avatars of the last kSlots snapshots gathered, by their number in the archive, as the world
-/// had them (without per-receiver flags). A receiver numbers the snapshots it gets one by one
+/// The avatars of the last snapshots gathered, by their number in the archive, as the world had
+/// them (without per-receiver flags). A receiver numbers the snapshots it gets one by one
 /// (Snapshot::tick) and need not get every one gathered (the server serves each client on its own
-/// ticks), so the archive keeps twice as many as a receiver's references reach back: 63 of a
-/// receiver's snapshots span up to 126 gathered at 20 Hz snapshots and 30 Hz ticks (95).
+/// ticks), so the archive keeps as many as a receiver's references reach back over: 64 of a
+/// receiver's snapshots at 20 Hz span 96 gathered on 30 Hz ticks (slots_for).
 class SnapshotArchive {
  public:
-  static constexpr uint32_t kSlots = 2 * AvatarHistory::kSlots;
+  /// Slots that hold a receiver's last AvatarHistory::kSlots snapshots when the sender gathers one
+  /// every tick and serves each receiver `snapshot_hz` of its `tick_hz` ticks a second.
+  static uint32_t slots_for(int tick_hz, int snapshot_hz);
+  explicit SnapshotArchive(uint32_t slots = AvatarHistory::kSlots) : slots_(slots) {}
   struct Slot {
     uint32_t snapshot = 0;
     uint32_t server_tick = 0;
@@ -37,14 +40,14 @@ class SnapshotArchive {
     std::vector<wire::AvatarState> avatars;  ///< Sorted by id.
   };
 
-  /// The slot of `snapshot`, emptied; it replaces the snapshot kSlots earlier.
+  /// The slot of `snapshot`, emptied; it replaces the snapshot as many slots earlier.
   Slot& start(uint32_t snapshot, uint32_t server_tick);
   const Slot* find(uint32_t snapshot) const;
   /// Bytes held (capacity), for the server's memory report.
   size_t bytes() const;
 
  private:
-  std::array<Slot, kSlots> slots_;
+  std::vector<Slot> slots_;
 };
 
 /// One receiver's views of the archived snapshots: which avatars, which of them far, which

@@ -163,7 +163,7 @@ TEST(AvatarDelta, AcknowledgementsOutOfOrderStillReferToTheNewest) {
   EXPECT_EQ(refs[0].state.frame(), 2u);
   EXPECT_EQ(refs[1].snapshot, 3u) << "avatar 2 is only in this receiver's 3";
   // 64 snapshots after 4, neither is in reach any more (references go 63 back): whole states again.
-  views.references(archive, now, 4 + SnapshotArchive::kSlots, refs);
+  views.references(archive, now, 4 + AvatarHistory::kSlots, refs);
   EXPECT_FALSE(refs[0].found || refs[1].found);
 }
 
@@ -188,6 +188,28 @@ TEST(AvatarDelta, AReceiverServedEveryFewSnapshotsCountsInItsOwnNumbers) {
   views.acknowledge(archive, 12);  // not one of its numbers: nothing happens
   views.references(archive, archive.find(15)->avatars, 5, refs);
   EXPECT_EQ(refs[0].snapshot, 2u);
+}
+
+// The archive holds a receiver's last 64 snapshots however often it is served: 96 gathered when
+// it gets 20 of 30 ticks, 64 when it gets every one, 192 when it gets 10.
+TEST(AvatarDelta, TheArchiveSpansAReceiversReachAtItsRate) {
+  EXPECT_EQ(SnapshotArchive::slots_for(30, 20), 96u);
+  EXPECT_EQ(SnapshotArchive::slots_for(30, 30), 64u);
+  EXPECT_EQ(SnapshotArchive::slots_for(30, 10), 192u);
+  EXPECT_EQ(SnapshotArchive::slots_for(60, 20), 192u);
+  // Served every other gathered snapshot and acknowledging its 63rd-last: still archived.
+  SnapshotArchive archive(SnapshotArchive::slots_for(30, 15));
+  SentViews views;
+  const std::vector<uint32_t> only{0};
+  for (uint32_t a = 1; a <= 130; ++a) {
+    archive.start(a, a).avatars = {State(1, 0, 0, 1, 1, 1, static_cast<uint8_t>(a), 0, 0)};
+    if (a % 2 == 0) views.record(a / 2, *archive.find(a), only, {});
+  }
+  views.acknowledge(archive, 2);  // its 2nd: gathered as 4, 126 gathered ago
+  std::vector<AvatarReference> refs;
+  views.references(archive, archive.find(130)->avatars, 65, refs);
+  ASSERT_TRUE(refs[0].found) << "63 of its snapshots back";
+  EXPECT_EQ(refs[0].state.frame(), 4u);
 }
 
 // Acknowledgements queued as inputs arrive and merged when the client is next served give the
@@ -434,13 +456,13 @@ TEST(AvatarDelta, AWarmSenderAllocatesNothingPerSnapshot) {
   std::vector<State> view;
   for (uint32_t id = 1; id <= 120; ++id) view.emplace_back(id, int32_t(id) * 100, 0, 3, 4, 5, 0, 0, 0);
   int allocations = 0;
-  for (uint32_t snapshot = 1; snapshot <= 200; ++snapshot) {
+  for (uint32_t snapshot = 1; snapshot <= 100; ++snapshot) {
     for (size_t i = 0; i < view.size(); ++i) {
       const State& a = view[i];
       view[i] = (snapshot + i) % 9 == 0 ? State(a.id(), a.start_x_mm() + 600, 0, 3, 4, 5, 0, 0, 0)
                                         : State(a.id(), a.start_x_mm(), 0, 3, 4, 5, static_cast<uint8_t>(a.frame() + 1), 0, 0);
     }
-    test::AllocationCount counting(snapshot > 140);  // the archive's 128 slots and the lists have grown by then
+    test::AllocationCount counting(snapshot > 70);  // the archive's 64 slots and the lists have grown by then
     history.plan(encoder, view, snapshot, snapshot);
     encoder.write_part(0, view.size(), bytes);
     history.remember(snapshot, snapshot, view);
