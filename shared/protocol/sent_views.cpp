@@ -94,8 +94,29 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
     if (in_reach(newest_[k])) merged.push_back(newest_[k]);
   // newest_ keeps its own storage (assign, not swap): the scratch's capacity stays with the thread.
   newest_.assign(merged.begin(), merged.end());
-  spare_bits_.push_back(std::move(s.bits));
-  s.bits = {};
+  release_bits(s);
+  // A client acknowledges only the newest snapshot it holds, so one that came right behind
+  // another is never acknowledged: its bits would wait 64 snapshots for the slot to be reused.
+  // Those well behind this one (kLateAckSnapshots: later than any acknowledgement that still comes
+  // out of order) are let go now.
+  if (!any_acknowledged_ || newer(snapshot, newest_acknowledged_)) {
+    const uint32_t before = snapshot - kLateAckSnapshots;
+    uint32_t n = any_acknowledged_ ? newest_acknowledged_ - kLateAckSnapshots : before - kMaxReferenceBack;
+    if (newer(before - static_cast<uint32_t>(slots_.size()), n)) n = before - static_cast<uint32_t>(slots_.size());
+    for (; newer(before, n); ++n) {
+      Slot& old = slots_[n % slots_.size()];
+      if (old.valid && old.snapshot == n && !old.acknowledged) old.valid = false, release_bits(old);
+    }
+    newest_acknowledged_ = snapshot;
+    any_acknowledged_ = true;
+  }
+}
+
+void SentViews::release_bits(Slot& s) {
+  // At most kMaxSpareBitSets kept: a client whose acknowledgements stopped for a while (up to 64
+  // bit sets in flight) gives the memory back once they resume.
+  if (spare_bits_.size() < kMaxSpareBitSets) spare_bits_.push_back(std::move(s.bits));
+  s.bits = std::vector<uint64_t>();  // frees it (`= {}` would keep its capacity)
 }
 
 void SentViews::queue_acknowledgement(const SnapshotArchive& archive, uint32_t snapshot) {

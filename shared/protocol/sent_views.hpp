@@ -89,7 +89,13 @@ class SentViews {
     std::vector<uint64_t> bits;
   };
   std::array<Slot, AvatarHistory::kSlots> slots_;  ///< By the receiver's number.
+  /// Gives `s`'s bit set to spare_bits_ (or frees it when enough are spare).
+  void release_bits(Slot& s);
+  static constexpr uint32_t kLateAckSnapshots = 8;  ///< 0.4 s at 20 Hz.
+  static constexpr size_t kMaxSpareBitSets = 8;
   std::vector<std::vector<uint64_t>> spare_bits_;  ///< Bit sets of acknowledged snapshots, for reuse.
+  uint32_t newest_acknowledged_ = 0;
+  bool any_acknowledged_ = false;
   std::array<uint32_t, 4> queued_{};  ///< Acknowledgements not merged yet, oldest first.
   uint32_t num_queued_ = 0;
   uint32_t owner_ = 0;

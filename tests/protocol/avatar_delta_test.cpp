@@ -302,6 +302,30 @@ TEST(AvatarDelta, AReceiverHoldsViewBitsOnlyForSnapshotsInFlight) {
   EXPECT_FALSE(refs[1].found) << "never in the view";
 }
 
+// A client acknowledges only the newest snapshot it holds, so some are never acknowledged: their
+// bits go once they are 8 behind the newest acknowledged, not 64 snapshots later; and after a
+// stall of acknowledgements (64 sets in flight) at most 8 sets stay as spares.
+TEST(AvatarDelta, SnapshotsNeverAcknowledgedAndAStallLeaveNoBitsBehind) {
+  constexpr size_t kArchived = 1000, kBitSetBytes = (2 * kArchived + 63) / 64 * 8;
+  SnapshotArchive archive;
+  SentViews skipping, stalled;
+  const std::vector<uint32_t> indices{0, 10, 20};
+  for (uint32_t snapshot = 1; snapshot <= 200; ++snapshot) {
+    auto& avatars = archive.start(snapshot, snapshot).avatars;
+    for (uint32_t id = 1; id <= kArchived; ++id) avatars.emplace_back(id, 0, 0, 1, 1, 1, 1, 0, 0);
+    skipping.record(snapshot, *archive.find(snapshot), indices, {});
+    stalled.record(snapshot, *archive.find(snapshot), indices, {});
+    if (snapshot > 2 && snapshot % 2 == 0) skipping.acknowledge(archive, snapshot - 2);  // every other one
+    if (snapshot > 2 && (snapshot < 100 || snapshot > 170)) stalled.acknowledge(archive, snapshot - 2);
+  }
+  // In flight: the last 2; never acknowledged but kept: up to 8 behind the newest acknowledged.
+  EXPECT_LT(skipping.bytes(), 20 * kBitSetBytes + 4096 + sizeof(SentViews));
+  EXPECT_LT(stalled.bytes(), 20 * kBitSetBytes + 4096 + sizeof(SentViews)) << "the stall's 64 sets given back";
+  std::vector<AvatarReference> refs;
+  skipping.references(archive, archive.find(200)->avatars, 200, refs);
+  EXPECT_TRUE(refs[0].found && refs[0].snapshot == 198) << "references still come from the acknowledged ones";
+}
+
 // Delta coding survives a round trip of 2 s (40 snapshots at 20 Hz, issue 19): the newest
 // acknowledgement that came back is 50 snapshots old and still a reference.
 TEST(AvatarDelta, AReferenceFiftySnapshotsBackStillCodesDelta) {
