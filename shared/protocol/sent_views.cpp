@@ -41,17 +41,25 @@ void SentViews::record(uint32_t snapshot, const SnapshotArchive::Slot& archive_s
   s.archived_as = archive_slot.snapshot;
   s.valid = true;
   s.acknowledged = false;
-  if (s.bits.capacity() == 0 && !spare_bits_.empty()) {  // an acknowledged snapshot's storage
-    s.bits.swap(spare_bits_.back());
-    spare_bits_.pop_back();
-  }
-  s.bits.assign((2 * archived + 63) / 64, 0);
+  if (s.bit_set == kNoBits) s.bit_set = take_bit_set();  // else the set of the snapshot it replaces
+  std::vector<uint64_t>& bits = bit_sets_[s.bit_set];
+  bits.assign((2 * archived + 63) / 64, 0);
   for (size_t k = 0; k < indices.size(); ++k) {
     const size_t i = indices[k];
     if (i >= archived) continue;
-    s.bits[2 * i / 64] |= uint64_t{1} << (2 * i % 64);
-    if (k < far.size() && far[k] != 0) s.bits[(2 * i + 1) / 64] |= uint64_t{1} << ((2 * i + 1) % 64);
+    bits[2 * i / 64] |= uint64_t{1} << (2 * i % 64);
+    if (k < far.size() && far[k] != 0) bits[(2 * i + 1) / 64] |= uint64_t{1} << ((2 * i + 1) % 64);
   }
+}
+
+uint8_t SentViews::take_bit_set() {
+  if (free_bit_sets_.empty()) {
+    bit_sets_.emplace_back();
+    return static_cast<uint8_t>(bit_sets_.size() - 1);  // at most one per slot: 64
+  }
+  const uint8_t i = free_bit_sets_.back();
+  free_bit_sets_.pop_back();
+  return i;
 }
 
 void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
@@ -74,15 +82,16 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
   // a few dozen of the 1000 archived avatars; testing each archived one cost a tenth of the
   // server's time at 1000 players.
   constexpr uint64_t kInViewBits = 0x5555555555555555ull;
-  for (size_t w = 0; w < s.bits.size(); ++w) {
-    for (uint64_t in_view = s.bits[w] & kInViewBits; in_view != 0; in_view &= in_view - 1) {
+  const std::vector<uint64_t>& bits = bit_sets_[s.bit_set];
+  for (size_t w = 0; w < bits.size(); ++w) {
+    for (uint64_t in_view = bits[w] & kInViewBits; in_view != 0; in_view &= in_view - 1) {
       const int bit = std::countr_zero(in_view);
       const size_t i = (w * 64 + static_cast<size_t>(bit)) / 2;
       if (i >= a->avatars.size()) break;
       const uint32_t id = a->avatars[i].id();
       for (; k < newest_.size() && newest_[k].id < id; ++k)
         if (in_reach(newest_[k])) merged.push_back(newest_[k]);
-      Newest n{id, snapshot, static_cast<uint32_t>(i), static_cast<uint32_t>(s.bits[w] >> (bit + 1) & 1)};
+      Newest n{id, snapshot, static_cast<uint32_t>(i), static_cast<uint32_t>(bits[w] >> (bit + 1) & 1)};
       if (k < newest_.size() && newest_[k].id == id) {
         if (newer(newest_[k].snapshot, snapshot)) n = newest_[k];
         ++k;
@@ -113,10 +122,13 @@ void SentViews::acknowledge(const SnapshotArchive& archive, uint32_t snapshot) {
 }
 
 void SentViews::release_bits(Slot& s) {
-  // At most kMaxSpareBitSets kept: a client whose acknowledgements stopped for a while (up to 64
-  // bit sets in flight) gives the memory back once they resume.
-  if (spare_bits_.size() < kMaxSpareBitSets) spare_bits_.push_back(std::move(s.bits));
-  s.bits = std::vector<uint64_t>();  // frees it (`= {}` would keep its capacity)
+  if (s.bit_set == kNoBits) return;
+  // At most kMaxSpareBitSets keep their storage: a client whose acknowledgements stopped for a
+  // while (up to 64 bit sets in flight) gives the memory back once they resume.
+  if (free_bit_sets_.size() >= kMaxSpareBitSets)
+    bit_sets_[s.bit_set] = std::vector<uint64_t>();  // frees it (`= {}` would keep its capacity)
+  free_bit_sets_.push_back(s.bit_set);
+  s.bit_set = kNoBits;
 }
 
 void SentViews::queue_acknowledgement(const SnapshotArchive& archive, uint32_t snapshot) {
@@ -171,9 +183,9 @@ void SentViews::references(const SnapshotArchive& archive, std::span<const wire:
 }
 
 size_t SentViews::bytes() const {
-  size_t n = sizeof(*this) + newest_.capacity() * sizeof(Newest) + spare_bits_.capacity() * sizeof(spare_bits_[0]);
-  for (const Slot& s : slots_) n += s.bits.capacity() * sizeof(uint64_t);
-  for (const auto& b : spare_bits_) n += b.capacity() * sizeof(uint64_t);
+  size_t n = sizeof(*this) + newest_.capacity() * sizeof(Newest) + bit_sets_.capacity() * sizeof(bit_sets_[0]) +
+             free_bit_sets_.capacity();
+  for (const auto& b : bit_sets_) n += b.capacity() * sizeof(uint64_t);
   return n;
 }
 

@@ -79,21 +79,27 @@ class SentViews {
   size_t bytes() const;
 
  private:
+  static constexpr uint8_t kNoBits = 0xFF;
+  /// 12 bytes: a receiver has 64, most of them acknowledged long ago and needing only their
+  /// archive number, so the bit sets live apart, in bit_sets_, while the snapshot is in flight.
   struct Slot {
     uint32_t snapshot = 0;     ///< The receiver's number.
     uint32_t archived_as = 0;  ///< The archive's number of the snapshot it was cut from.
     bool valid = false;
     bool acknowledged = false;
-    /// Archive index i: bit 2i in view, bit 2i + 1 far. Empty once acknowledged (merged into
-    /// newest_, the storage back in spare_bits_).
-    std::vector<uint64_t> bits;
+    /// Its view in bit_sets_ (archive index i: bit 2i in view, bit 2i + 1 far) until it is
+    /// acknowledged (merged into newest_) or let go; kNoBits after.
+    uint8_t bit_set = kNoBits;
   };
   std::array<Slot, AvatarHistory::kSlots> slots_;  ///< By the receiver's number.
-  /// Gives `s`'s bit set to spare_bits_ (or frees it when enough are spare).
+  /// A free bit set's index (one given back, with its storage, if any).
+  uint8_t take_bit_set();
+  /// Gives `s`'s bit set back (its storage kept for reuse, or freed when enough are spare).
   void release_bits(Slot& s);
   static constexpr uint32_t kLateAckSnapshots = 8;  ///< 0.4 s at 20 Hz.
   static constexpr size_t kMaxSpareBitSets = 8;
-  std::vector<std::vector<uint64_t>> spare_bits_;  ///< Bit sets of acknowledged snapshots, for reuse.
+  std::vector<std::vector<uint64_t>> bit_sets_;  ///< At most one per slot.
+  std::vector<uint8_t> free_bit_sets_;           ///< Indices into bit_sets_ not in use.
   uint32_t newest_acknowledged_ = 0;
   bool any_acknowledged_ = false;
   std::array<uint32_t, 4> queued_{};  ///< Acknowledgements not merged yet, oldest first.
