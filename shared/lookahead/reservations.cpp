@@ -48,16 +48,25 @@ void Reservations::clear() {
 }
 
 // Clamped to the grid (NaN to the first cell), monotone: a box's cells are those of its corners.
-int Reservations::cell_x(float x) const {
-  const float f = std::floor((x - origin_m_.x) / cell_m_);
+int Reservations::cell_along(float v, float origin, int count) const {
+  const float f = std::floor((v - origin) / cell_m_);
   if (!(f > 0.0f)) return 0;
-  return f >= static_cast<float>(count_x_ - 1) ? count_x_ - 1 : static_cast<int>(f);
+  return f >= static_cast<float>(count - 1) ? count - 1 : static_cast<int>(f);
 }
 
-int Reservations::cell_z(float z) const {
-  const float f = std::floor((z - origin_m_.y) / cell_m_);
-  if (!(f > 0.0f)) return 0;
-  return f >= static_cast<float>(count_z_ - 1) ? count_z_ - 1 : static_cast<int>(f);
+// The frames from `from` on, placed at `start`, with the box their discs fill.
+void Reservations::place_frames(std::span<const BodyVolume> frames, size_t from, const Placement& start,
+                                std::vector<Reserved>& out, vec2& lo, vec2& hi) {
+  const Placer placer(start);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  lo = vec2(kInf), hi = vec2(-kInf);
+  for (size_t f = from; f < frames.size(); ++f) {
+    const BodyVolume v = placer(frames[f]);
+    const float reach = v.reach_m();
+    out.push_back({v, reach});
+    lo = glm::min(lo, v.center_m - vec2(reach));
+    hi = glm::max(hi, v.center_m + vec2(reach));
+  }
 }
 
 void Reservations::add(int owner, const MotionLibrary& library, int segment, int from_frame,
@@ -65,16 +74,8 @@ void Reservations::add(int owner, const MotionLibrary& library, int segment, int
   const auto frames = library.volumes(segment);
   const size_t from = static_cast<size_t>(std::max(from_frame, 0));
   if (from >= frames.size()) return;
-  const Placer placer(start);
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  Run run{vec2(kInf), vec2(-kInf), static_cast<int>(bodies_.size()), 0, owner};
-  for (size_t f = from; f < frames.size(); ++f) {
-    const BodyVolume v = placer(frames[f]);
-    const float reach = v.reach_m();
-    bodies_.push_back({v, reach});
-    run.lo_m = glm::min(run.lo_m, v.center_m - vec2(reach));
-    run.hi_m = glm::max(run.hi_m, v.center_m + vec2(reach));
-  }
+  Run run{vec2(0.0f), vec2(0.0f), static_cast<int>(bodies_.size()), 0, owner};
+  place_frames(frames, from, start, bodies_, run.lo_m, run.hi_m);
   run.end = static_cast<int>(bodies_.size());
   const int index = static_cast<int>(runs_.size());
   runs_.push_back(run);
@@ -92,16 +93,8 @@ bool Reservations::blocks(int self, const MotionLibrary& library, int segment,
   if (runs_.empty()) return false;
   thread_local std::vector<Reserved> placed;  // the candidate's frames; capacity kept
   placed.clear();
-  const Placer placer(start);
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  vec2 lo(kInf), hi(-kInf);
-  for (const BodyVolume& local : library.volumes(segment)) {
-    const BodyVolume v = placer(local);
-    const float reach = v.reach_m();
-    placed.push_back({v, reach});
-    lo = glm::min(lo, v.center_m - vec2(reach));
-    hi = glm::max(hi, v.center_m + vec2(reach));
-  }
+  vec2 lo, hi;
+  place_frames(library.volumes(segment), 0, start, placed, lo, hi);
   if (placed.empty()) return false;
   lo -= vec2(clearance_m_ + kSlack_m);
   hi += vec2(clearance_m_ + kSlack_m);

@@ -53,8 +53,11 @@ class Reservations {
     BodyVolume volume;
     float reach_m;
   };
-  int cell_x(float x) const;
-  int cell_z(float z) const;
+  int cell_along(float v, float origin, int count) const;
+  int cell_x(float x) const { return cell_along(x, origin_m_.x, count_x_); }
+  int cell_z(float z) const { return cell_along(z, origin_m_.y, count_z_); }
+  static void place_frames(std::span<const BodyVolume> frames, size_t from, const Placement& start,
+                           std::vector<Reserved>& out, vec2& lo, vec2& hi);
   /// Does any frame of `frames` (placed, with their reaches) come within the clearance of a frame
   /// of `run`?
   bool run_blocks(const Run& run, std::span<const Reserved> frames) const;
