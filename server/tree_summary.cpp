@@ -28,10 +28,10 @@ bool TreeSummaryWriter::add(const MotionTree& tree, int node, vec2 origin) {
   sample_of_[ni] = static_cast<int32_t>(samples_.size());
   // Segment and start heading let the client rebuild the node's clip (ghost poses); its start
   // position is its parent's end, already on the wire.
-  samples_.emplace_back(to_cm16(n.end_pos_m.x - origin.x), to_cm16(n.end_pos_m.y - origin.y), parent,
+  samples_.emplace_back(to_cm16(n.end.pos_m.x - origin.x), to_cm16(n.end.pos_m.y - origin.y), parent,
                         static_cast<uint8_t>(std::clamp(depth, 0, 255)), uint8_t{0},
-                        static_cast<uint16_t>(std::clamp(n.segment, 0, 0xFFFF)),
-                        protocol::quantize_angle(n.start.heading_rad));
+                        static_cast<uint16_t>(std::clamp(tree.segment_of(node), 0, 0xFFFF)),
+                        protocol::quantize_angle(tree.start_of(node).heading_rad));
   return true;
 }
 
@@ -52,7 +52,7 @@ std::span<const uint8_t> TreeSummaryWriter::write(protocol::PacketWriter& w, Mot
       samples_.reserve(protocol::kMaxTreeSamples);
     }
     const MotionTreeNode& r = tree.node(root);
-    origin = chosen_end = r.start.pos_m;
+    origin = chosen_end = tree.start_of(root).pos_m;
 
     // Weighted branch sums (section 4.3), bottom-up over the depth-first order.
     const auto& weights = tree.config().selection_weights;
@@ -70,7 +70,7 @@ std::span<const uint8_t> TreeSummaryWriter::write(protocol::PacketWriter& w, Mot
 
     // The root, the chosen branch, then breadth-first.
     add(tree, root, origin);
-    if (chosen >= 0) chosen_end = tree.node(chosen).end_pos_m;
+    if (chosen >= 0) chosen_end = tree.node(chosen).end.pos_m;
     for (int c = chosen; c >= 0;) {
       if (!add(tree, c, origin)) break;
       samples_[static_cast<size_t>(sample_of_[static_cast<size_t>(c)])].mutate_flags(protocol::kTreeNodeChosen);

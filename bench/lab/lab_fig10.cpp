@@ -68,7 +68,7 @@ Fig10Result run_fig10(const LabScene& lab, const LabOptions& options,
     Fig10Panel panel;
     panel.strategy = config.strategy;
     tree.for_each_node([&](int, const MotionTreeNode& n) {
-      panel.end_positions_m.push_back(n.end_pos_m);
+      panel.end_positions_m.push_back(n.end.pos_m);
       panel.depths.push_back(n.depth);
       panel.max_depth = std::max(panel.max_depth, static_cast<int>(n.depth));
     });

@@ -269,7 +269,7 @@ void LookaheadAvatar::find_traps() {
   thread_local std::vector<int> visit;  // the thread's scratch stack (capacity kept)
   const MotionTree& t = tree_;
   for (int c = t.node(t.root()).first_child; c >= 0; c = t.node(c).next_sibling) {
-    if (is_standing_loop(t.node(c).segment)) continue;  // standing where it is, not going anywhere
+    if (is_standing_loop(t.segment_of(c))) continue;  // standing where it is, not going anywhere
     bool trap = true;
     visit.clear();
     visit.push_back(c);
@@ -277,10 +277,10 @@ void LookaheadAvatar::find_traps() {
       const int i = visit.back();
       visit.pop_back();
       const MotionTreeNode& n = t.node(i);
-      if ((i != c && !is_standing_loop(n.segment)) || (!n.expanded && n.depth < t.config().max_depth)) trap = false;
+      if ((i != c && !is_standing_loop(t.segment_of(i))) || (!n.expanded && n.depth < t.config().max_depth)) trap = false;
       for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) visit.push_back(k);
     }
-    if (trap) traps_.push_back(t.node(c).segment);
+    if (trap) traps_.push_back(t.segment_of(c));
   }
 }
 
@@ -301,12 +301,12 @@ int LookaheadAvatar::select_child(const ChildVeto* veto) {
   const bool want_moving = !ends_standing_[static_cast<size_t>(playback_.segment)];
   int best = -1, moving = -1, free = -1;
   for (const int c : ranked) {
-    const int segment = tree_.node(c).segment;
+    const int segment = tree_.segment_of(c);
     const bool trap = std::find(traps_.begin(), traps_.end(), segment) != traps_.end();
     const bool could_move = want_moving && moving < 0 && !trap && !ends_standing_[static_cast<size_t>(segment)];
     const bool could_be_free = free < 0 && !trap;
     if (best >= 0 && !could_move && !could_be_free) continue;  // nothing left for it to answer
-    if (veto != nullptr && veto->blocks(segment, tree_.node(c).start)) continue;
+    if (veto != nullptr && veto->blocks(segment, tree_.start_of(c))) continue;
     if (best < 0) best = c;
     if (could_move) moving = c;
     if (could_be_free) free = c;
@@ -329,7 +329,7 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
       return result;
     }
     child = select_child(veto);
-    if (child < 0 || (library_.graph.segments[tree_.node(child).segment].tags & kTagIdle)) {
+    if (child < 0 || (library_.graph.segments[tree_.segment_of(child)].tags & kTagIdle)) {
       result.steered = turn_on_spot(veto);  // nothing better than standing
       return result;
     }
@@ -342,8 +342,8 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   // The naive baseline kept children unchecked: it finds out only now, and stops.
   const bool child_free =
       child >= 0 && (tree_.config().check_collisions ||
-                     segment_feasible(world_, library_.segment_shapes[tree_.node(child).segment],
-                                      tree_.node(child).start));
+                     segment_feasible(world_, library_.segment_shapes[tree_.segment_of(child)],
+                                      tree_.start_of(child)));
   if (child_free) {
     result.transition = tree_.advance_root(child);
     playback_take(library_, playback_, result.transition);

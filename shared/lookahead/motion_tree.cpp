@@ -12,13 +12,11 @@ namespace {
 // these per tree cost every avatar ~10 KB.
 struct RankedChild {
   int64_t sum;  ///< RootChildSum::sum.
-  uint32_t order;
-  int node;
+  int node;     ///< Also the creation order (ties go to the earlier child).
 };
 thread_local std::vector<RankedChild> t_ranked;
 thread_local std::vector<std::pair<int, int>> t_branch_stack;  // refresh_priorities: node, root_sums_ slot
 thread_local std::vector<int32_t> t_new_index;                 // compact(): old index -> new
-thread_local std::vector<int32_t> t_live;                      // compact(): live nodes in preorder
 thread_local std::vector<int> t_walk_stack;
 
 }  // namespace
@@ -49,59 +47,53 @@ void MotionTree::give_back_chunks_from(size_t first) {
 void MotionTree::reset(int segment, const Placement& start, int incoming_transition) {
   // Nothing survives a reset. The tree keeps the chunks it had filled (it is likely to grow as
   // far again: steering resets a tree every steered frame) and gives back the rest.
-  if (config_.shrink_pool) give_back_chunks_from(static_cast<size_t>(std::max(1, chunks_for(num_nodes_))));
+  if (config_.compact_on_reroot)
+    give_back_chunks_from(static_cast<size_t>(std::max(1, chunks_for(first_unused_))));
   priorities_stale_ = false;
   root_sums_.clear();  // the root alone: no branches
   sums_valid_ = true;
-  // O(1): nodes come from the free list, then from the never-used part of the chunks; in the
-  // same order as a list of every node would give them.
-  free_head_ = -1;
-  first_unused_ = 0;
+  first_unused_ = 0;  // O(1)
   num_nodes_ = 0;
-  next_order_ = 0;
   queue_.clear();
   root_ = allocate();
+  root_start_ = start;
+  root_segment_ = segment;
   MotionTreeNode& r = at(root_);
-  r.start = start;
-  r.end_pos_m = start.compose(library_.segment_motion[segment].end).pos_m;
-  r.segment = segment;
+  r.end = start.compose(library_.segment_motion[static_cast<size_t>(segment)].end);
   r.transition = incoming_transition;
   r.grow_priority = 1.0f;
   r.match = 1.0f;
   queue_.push_back({r.grow_priority, root_});
 }
 
-// Memory follows the work down as well as up: after a re-root that freed two chunks' worth of
-// nodes or more (most re-roots free the branches not taken, over half the tree), the live nodes
-// in preorder from the root get indices 0..n-1 in as few chunks as they need, and the rest go
-// back to the pool. Links are renumbered, creation orders kept (ties are broken by them, never by
-// index, so the tree behaves exactly as before). O(live nodes), once per re-root at most.
+// After a re-root (root_ is the new root), the nodes reached from it move down to indices
+// 0..n-1 in the order they had, so index order stays creation order (ties are broken by it) and
+// the tree holds no freed node; the chunks past them go back to the pool. Depths drop by one
+// (they are relative to the root, so the depth cap keeps looking the same distance ahead).
+// O(nodes allocated since the last re-root), once per re-root. In place: a node only moves down,
+// to a slot whose node has already moved or is dead.
 void MotionTree::compact() {
   std::vector<int32_t>& new_index = t_new_index;
-  std::vector<int32_t>& live = t_live;
-  new_index.assign(static_cast<size_t>(node_capacity()), -1);
-  live.clear();
-  for_each_node([&](int n, const MotionTreeNode&) {
-    new_index[static_cast<size_t>(n)] = static_cast<int32_t>(live.size());
-    live.push_back(n);
-  });
+  new_index.assign(static_cast<size_t>(first_unused_), -1);
+  for_each_node([&](int n, const MotionTreeNode&) { new_index[static_cast<size_t>(n)] = 0; });
+  int count = 0;
+  for (int32_t& i : new_index)
+    if (i == 0) i = count++;
   const auto renumber = [&](int16_t i) { return i < 0 ? i : static_cast<int16_t>(new_index[static_cast<size_t>(i)]); };
-  const int count = static_cast<int>(live.size());
-  const size_t old_chunks = chunks_.size();
-  for (int c = 0; c < chunks_for(count); ++c) chunks_.push_back(pool_->take());
-  // New node k lives in chunk old_chunks + k / 64 until the old chunks are given back.
-  for (int k = 0; k < count; ++k) {
-    MotionTreeNode n = at(live[static_cast<size_t>(k)]);
+  for (int i = 0; i < first_unused_; ++i) {
+    const int to = new_index[static_cast<size_t>(i)];
+    if (to < 0) continue;
+    MotionTreeNode n = at(i);
     n.parent = renumber(n.parent);
     n.first_child = renumber(n.first_child);
     n.next_sibling = renumber(n.next_sibling);
-    at(static_cast<int>(old_chunks) * MotionNodePool::kChunkNodes + k) = n;
+    --n.depth;
+    at(to) = n;
   }
-  pool_->give_back(std::span(chunks_).first(old_chunks));
-  chunks_.erase(chunks_.begin(), chunks_.begin() + static_cast<std::ptrdiff_t>(old_chunks));
   root_ = new_index[static_cast<size_t>(root_)];
-  free_head_ = -1;
   first_unused_ = count;
+  num_nodes_ = count;
+  give_back_chunks_from(static_cast<size_t>(chunks_for(count)));
   // The leaf queue and the branch sums named old indices: advance_root left them stale, and they
   // are rebuilt from the tree before their next use. A queue far larger than the tree is cut.
   assert(priorities_stale_ && !sums_valid_);
@@ -115,34 +107,14 @@ void MotionTree::compact() {
 }
 
 int MotionTree::allocate() {
-  int i = first_unused_;
-  if (free_head_ >= 0) {
-    i = free_head_;
-    free_head_ = at(i).next_sibling;
-  } else {
-    assert(first_unused_ < config_.max_nodes);
-    // One chunk more when the budget pays for more nodes than the tree holds (once per 64 nodes,
-    // never per node); chunks never move, so references into other chunks stay valid.
-    if (first_unused_ == node_capacity()) chunks_.push_back(pool_->take());
-    ++first_unused_;
-  }
-  MotionTreeNode& n = at(i);
-  n = MotionTreeNode{};
-  n.order = next_order_++;
+  assert(first_unused_ < config_.max_nodes);
+  // One chunk more when the budget pays for more nodes than the tree holds (once per 64 nodes,
+  // never per node); chunks never move, so references into other chunks stay valid.
+  if (first_unused_ == node_capacity()) chunks_.push_back(pool_->take());
+  const int i = first_unused_++;
+  at(i) = MotionTreeNode{};
   ++num_nodes_;
   return i;
-}
-
-void MotionTree::free_subtree(int index) {
-  // Iterative (a long chain must not recurse once per node); a node's children are taken after it
-  // joins the free list, through its first_child, which that leaves alone.
-  walk_subtree(index, [&](int n) {
-    MotionTreeNode& node = at(n);
-    node.segment = -1;
-    node.next_sibling = static_cast<int16_t>(free_head_);
-    free_head_ = n;
-    --num_nodes_;
-  });
 }
 
 // Command matching (4.2): the angle between the command u and v_k, the movement from where the
@@ -154,11 +126,11 @@ void MotionTree::free_subtree(int index) {
 // A zero command means "stop": nodes that end close to the avatar, facing the way it faces, match
 // best (without the heading term turning on the spot matches "stop" as well as standing still,
 // and an idle avatar fidgets round in circles).
-float MotionTree::base_match(const MotionTreeNode& n) const {
-  const SegmentMotion& motion = library_.segment_motion[static_cast<size_t>(n.segment)];
-  const vec2 v = n.end_pos_m - avatar_.pos_m;
+float MotionTree::base_match(const MotionTreeNode& n, int segment, const Placement& start) const {
+  const SegmentMotion& motion = library_.segment_motion[static_cast<size_t>(segment)];
+  const vec2 v = n.end.pos_m - avatar_.pos_m;
   const float v_len = glm::length(v);
-  const float end_heading = n.start.heading_rad + motion.end.heading_rad;
+  const float end_heading = start.heading_rad + motion.end.heading_rad;
   float g;
   if (command_ == vec2(0.0f)) {
     const float turn = std::abs(wrap_angle(end_heading - avatar_.heading_rad));
@@ -169,12 +141,12 @@ float MotionTree::base_match(const MotionTreeNode& n) const {
     const float direction = 0.5f * (1.0f + glm::dot(command_, v) / v_len);
     const vec2 facing(std::sin(end_heading), std::cos(end_heading));
     const float facing_match = 0.75f + 0.25f * glm::dot(command_, facing);
-    const int frames = library_.graph.segments[static_cast<size_t>(n.segment)].num_frames();
+    const int frames = library_.graph.segments[static_cast<size_t>(segment)].num_frames();
     const float speed_mps = glm::length(motion.end.pos_m) * segment_fps_ / static_cast<float>(frames);
     const float pace = 0.5f + 0.5f * std::min(speed_mps / kWalkingPace_mps, 1.0f);
     g = direction * facing_match * pace;
   }
-  if (crouch_ && !(library_.graph.segments[static_cast<size_t>(n.segment)].tags & kTagCrouch))
+  if (crouch_ && !(library_.graph.segments[static_cast<size_t>(segment)].tags & kTagCrouch))
     g *= kStandingWhileCrouchHeld;
   return std::clamp(g, config_.min_priority, config_.max_priority);
 }
@@ -185,13 +157,14 @@ float MotionTree::statistic(const MotionTreeNode& n) const {
                     config_.min_priority, config_.max_priority);
 }
 
-float MotionTree::grow_priority_of(const MotionTreeNode& n, float parent_grow) const {
+float MotionTree::grow_priority_of(const MotionTreeNode& n, int segment, const Placement& start,
+                                   float parent_grow) const {
   switch (config_.strategy) {
     case Strategy::kBreadthFirst: return -static_cast<float>(n.depth);
     case Strategy::kCommand:
     case Strategy::kCommandNoResort: return n.match;
     case Strategy::kStatistic: return parent_grow * statistic(n);
-    case Strategy::kHybrid: return parent_grow * base_match(n) * statistic(n);
+    case Strategy::kHybrid: return parent_grow * base_match(n, segment, start) * statistic(n);
   }
   return 0.0f;
 }
@@ -240,8 +213,9 @@ void MotionTree::refresh_priorities() {
       if (resort) node.grow_priority = 1.0f;
     } else {
       const MotionTreeNode& p = at(node.parent);
-      node.match = p.match * base_match(node);
-      if (resort) node.grow_priority = grow_priority_of(node, p.grow_priority);
+      const int segment = library_.graph.transitions[static_cast<size_t>(node.transition)].to;
+      node.match = p.match * base_match(node, segment, p.end);
+      if (resort) node.grow_priority = grow_priority_of(node, segment, p.end, p.grow_priority);
       if (slot < 0) {  // a child of the root: its own branch
         slot = static_cast<int>(root_sums_.size());
         root_sums_.push_back({index, 0});
@@ -259,7 +233,7 @@ void MotionTree::rebuild_queue() {
     if (!n.expanded && n.depth < config_.max_depth)
       queue_.push_back({n.grow_priority, index});
   });
-  std::make_heap(queue_.begin(), queue_.end(), queue_less());
+  std::make_heap(queue_.begin(), queue_.end(), queue_less);
 }
 
 GrowResult MotionTree::grow(const GrowBudget& budget) {
@@ -278,21 +252,20 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       break;
     }
     const QueueEntry best = queue_.front();
-    const MotionTreeNode& leaf = at(best.node);
-    const auto successors = library_.graph.successors(leaf.segment);
+    const int leaf_segment = segment_of(best.node);
+    const auto successors = library_.graph.successors(leaf_segment);
     // Expand a leaf whole or not at all, so a full pool never leaves it half expanded.
-    if (static_cast<int>(successors.size()) > config_.max_nodes - num_nodes_) {
+    if (static_cast<int>(successors.size()) > config_.max_nodes - first_unused_) {
       result.status |= kGrowOutOfNodes;
       break;
     }
-    std::pop_heap(queue_.begin(), queue_.end(), queue_less());
+    std::pop_heap(queue_.begin(), queue_.end(), queue_less);
     queue_.pop_back();
 
     const int leaf_index = best.node;
     const int branch_slot = sums_valid_ ? branch_slot_of(leaf_index) : -1;  // where its children's weights add
-    const Placement place =
-        leaf.start.compose(library_.segment_motion[static_cast<size_t>(leaf.segment)].end);
-    const int first_transition = library_.graph.first_transition[leaf.segment];
+    const Placement place = at(leaf_index).end;  // where every child starts
+    const int first_transition = library_.graph.first_transition[static_cast<size_t>(leaf_segment)];
     for (size_t i = 0; i < successors.size(); ++i) {
       const int segment = successors[i].to;
       if (library_.graph.segments[static_cast<size_t>(segment)].tags & config_.excluded_tags) continue;
@@ -305,14 +278,12 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       const int child = allocate();
       MotionTreeNode& parent = at(leaf_index);
       MotionTreeNode& c = at(child);
-      c.start = place;
-      c.end_pos_m = place.compose(library_.segment_motion[segment].end).pos_m;
-      c.segment = segment;
+      c.end = place.compose(library_.segment_motion[static_cast<size_t>(segment)].end);
       c.transition = first_transition + static_cast<int>(i);
       c.parent = static_cast<int16_t>(leaf_index);
       c.depth = static_cast<uint8_t>(parent.depth + 1);
-      c.match = parent.match * base_match(c);
-      c.grow_priority = grow_priority_of(c, parent.grow_priority);
+      c.match = parent.match * base_match(c, segment, place);
+      c.grow_priority = grow_priority_of(c, segment, place, parent.grow_priority);
       c.next_sibling = parent.first_child;
       parent.first_child = static_cast<int16_t>(child);
       ++result.nodes_added;
@@ -323,7 +294,7 @@ GrowResult MotionTree::grow(const GrowBudget& budget) {
       }
       if (c.depth < config_.max_depth) {
         queue_.push_back({c.grow_priority, child});
-        std::push_heap(queue_.begin(), queue_.end(), queue_less());
+        std::push_heap(queue_.begin(), queue_.end(), queue_less);
       }
     }
     at(leaf_index).expanded = 1;
@@ -357,9 +328,9 @@ std::span<const int> MotionTree::ranked_children() {
   assert(sums_valid_ && "only advance_root() invalidates them, and it leaves the priorities stale");
   std::vector<RankedChild>& ranked = t_ranked;
   ranked.clear();
-  for (const RootChildSum& r : root_sums_) ranked.push_back({r.sum, at(r.node).order, r.node});
+  for (const RootChildSum& r : root_sums_) ranked.push_back({r.sum, r.node});
   std::sort(ranked.begin(), ranked.end(), [](const RankedChild& a, const RankedChild& b) {
-    return a.sum > b.sum || (a.sum == b.sum && a.order < b.order);
+    return a.sum > b.sum || (a.sum == b.sum && a.node < b.node);
   });
   ranked_nodes_.clear();
   for (const RankedChild& r : ranked) ranked_nodes_.push_back(r.node);
@@ -370,33 +341,32 @@ int MotionTree::select_child(const ChildVeto* veto) {
   // The veto (a reservation check of every frame, on the server) is asked best first, so only
   // the children better than the one taken are checked.
   for (const int c : ranked_children()) {
-    const MotionTreeNode& n = at(c);
-    if (veto == nullptr || !veto->blocks(n.segment, n.start)) return c;
+    if (veto == nullptr || !veto->blocks(segment_of(c), start_of(c))) return c;
   }
   return -1;
 }
 
 int MotionTree::advance_root(int child) {
   assert(child >= 0 && at(child).parent == root_);
-  MotionTreeNode& old_root = at(root_);
-  int c = old_root.first_child;
-  while (c >= 0) {
-    const int next = at(c).next_sibling;
-    if (c != child) free_subtree(c);
-    c = next;
-  }
-  old_root.first_child = -1;
-  free_subtree(root_);
+  const int transition = at(child).transition;
+  root_start_ = at(root_).end;
+  root_segment_ = segment_of(child);
+  at(root_).first_child = -1;  // the old root and the branches not taken are no longer reached
   root_ = child;
   MotionTreeNode& r = at(root_);
   r.parent = -1;
   r.next_sibling = -1;
-  // Depths are relative to the root, so the depth cap keeps looking the same distance ahead.
-  for_each_node([&](int index, const MotionTreeNode&) { --at(index).depth; });
   priorities_stale_ = true;
   sums_valid_ = false;
-  const int transition = r.transition;
-  if (config_.shrink_pool && static_cast<int>(chunks_.size()) - chunks_for(num_nodes_) >= 2) compact();
+  if (config_.compact_on_reroot) {
+    compact();
+  } else {
+    num_nodes_ = 0;
+    for_each_node([&](int index, const MotionTreeNode&) {
+      --at(index).depth;
+      ++num_nodes_;
+    });
+  }
   return transition;
 }
 

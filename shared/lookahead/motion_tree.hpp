@@ -8,14 +8,14 @@
 // of priorities (4.3); the root moves down and the sibling subtrees are freed (Fig. 4).
 //
 // Memory: nodes live in chunks of 64 taken from a MotionNodePool (one shared by every avatar of a
-// server, or the tree's own) with a free list, and the leaf queue is a heap over a vector. A tree
-// takes a chunk when its budget pays for more nodes than it holds, up to max_nodes; when a re-root
-// frees two chunks' worth or more, the live nodes are renumbered into as few chunks as they need
-// (compact()) and the rest go back to the pool, and a reset keeps only the chunks the tree had
-// filled. So the trees' memory follows the nodes their budgets pay for, summed over the avatars.
-// Nothing is allocated per node: a chunk is taken per 64 nodes.
+// server, or the tree's own), allocated in index order, and the leaf queue is a heap over a
+// vector. A tree takes a chunk when its budget pays for more nodes than it holds, up to
+// max_nodes; at every re-root the live nodes move down to indices 0..n-1 in the order they had
+// (compact()) and the chunks past them go back to the pool; a reset keeps only the chunks the
+// tree had filled. So the trees' memory follows the nodes their budgets pay for, summed over the
+// avatars, with no free list and no holes. Nothing is allocated per node: a chunk per 64 nodes.
 // Determinism: the same inputs and the same expansion budget give the same tree, bit for bit
-// (ties are broken by the order nodes were created).
+// (ties are broken by the order nodes were created, which is their index order).
 #include "library/motion_library.hpp"
 #include "lookahead/motion_node_pool.hpp"
 #include "lookahead/motion_tree_node.hpp"
@@ -38,9 +38,10 @@ struct MotionTreeConfig {
   /// Where the tree's node chunks come from: the server's pool, shared by its avatars. nullptr:
   /// the tree makes its own (tests, benches, one avatar alone).
   MotionNodePool* node_pool = nullptr;
-  /// false: the tree only takes chunks, never gives them back or renumbers its nodes (a test
-  /// compares a tree that does with one that does not).
-  bool shrink_pool = true;
+  /// false: a re-root leaves the freed nodes where they are (never reused, so the tree fills up)
+  /// and keeps every chunk. Only for a test that compares a tree that compacts with one that
+  /// does not.
+  bool compact_on_reroot = true;
   int max_depth = 8;           ///< Root is depth 0; nodes deeper than this are never created. [1, 255]
   Strategy strategy = Strategy::kCommand;
   /// Weight of a node at depth d (1-based below the root) in the branch sum of 4.3; decreasing.
@@ -136,9 +137,8 @@ class MotionTree {
   /// Switches the exploration strategy at run time: the tree keeps its root (the segment playing)
   /// and regrows under the new priorities.
   void set_strategy(Strategy strategy) {
-    const MotionTreeNode root = at(root_);
     config_.strategy = strategy;
-    reset(root.segment, root.start, root.transition);
+    reset(root_segment_, root_start_, at(root_).transition);
   }
 
   /// Strategy 3 and 4 priorities (learned elsewhere). Without them both fall back to uniform.
@@ -163,12 +163,19 @@ class MotionTree {
   /// brought up to date lazily, by the next set_command(), grow() or select_child(): the server
   /// decides for every avatar in one sequential pass and grows them on several threads, and this
   /// puts the re-prioritising on those threads. The result is the same as doing it here.
-  /// Node indices held across it are void: the live nodes may be renumbered into fewer chunks.
+  /// Node indices held across it are void: the live nodes are renumbered from 0.
   int advance_root(int child);
 
   int root() const { return root_; }
   const MotionTreeNode& node(int index) const { return at(index); }
-  int num_nodes() const { return num_nodes_; }
+  /// The segment node `index` plays: its transition's target (the root's is kept by the tree).
+  int segment_of(int index) const {
+    return index == root_ ? root_segment_
+                          : library_.graph.transitions[static_cast<size_t>(at(index).transition)].to;
+  }
+  /// Where node `index`'s segment starts: where its parent's ends (the root's is kept by the tree).
+  const Placement& start_of(int index) const { return index == root_ ? root_start_ : at(at(index).parent).end; }
+  int num_nodes() const { return num_nodes_; }  ///< Live nodes (those reached from the root).
   /// Nodes the tree's chunks hold now (node indices are below it): whole chunks, up to the
   /// chunk that holds config().max_nodes.
   int node_capacity() const { return static_cast<int>(chunks_.size()) * MotionNodePool::kChunkNodes; }
@@ -196,12 +203,9 @@ class MotionTree {
     int32_t node;
   };
   /// The heap's order: higher priority first; on a tie the node created first (FIFO, for
-  /// determinism), its creation order read from the node (ties are rare, and 8-byte entries
-  /// keep the queue at two thirds of the size).
-  auto queue_less() const {
-    return [this](const QueueEntry& a, const QueueEntry& b) {
-      return a.priority != b.priority ? a.priority < b.priority : at(a.node).order > at(b.node).order;
-    };
+  /// determinism), which is the lower index.
+  static bool queue_less(const QueueEntry& a, const QueueEntry& b) {
+    return a.priority != b.priority ? a.priority < b.priority : a.node > b.node;
   }
 
   /// The calling thread's scratch stack for walks (one per thread, not per tree: a tree is only
@@ -237,10 +241,10 @@ class MotionTree {
   int allocate();
   int branch_slot_of(int index) const;
   static int64_t branch_weight(const std::array<float, 8>& weights, const MotionTreeNode& n);
-  void free_subtree(int index);
-  float base_match(const MotionTreeNode& n) const;
+  /// Node n plays `segment` from `start` (neither is stored in the node).
+  float base_match(const MotionTreeNode& n, int segment, const Placement& start) const;
   float statistic(const MotionTreeNode& n) const;
-  float grow_priority_of(const MotionTreeNode& n, float parent_grow) const;
+  float grow_priority_of(const MotionTreeNode& n, int segment, const Placement& start, float parent_grow) const;
   void refresh_priorities();  // recompute match (and re-sorting grow priorities) top-down
   void rebuild_queue();
   void update_priorities_if_stale();
@@ -254,9 +258,10 @@ class MotionTree {
   std::vector<MotionNodePool::Chunk*> chunks_;  ///< Node i is chunks_[i / 64]->nodes[i % 64].
   std::vector<QueueEntry> queue_;
   std::vector<int> ranked_nodes_;    ///< ranked_children()'s result (capacity kept).
-  int free_head_ = -1;
-  int first_unused_ = 0;  ///< Nodes from here on were never allocated since reset().
+  int first_unused_ = 0;  ///< The next node allocated gets this index.
   int num_nodes_ = 0;
+  Placement root_start_;  ///< Where the root's segment starts.
+  int root_segment_ = 0;
   /// Per child of the root: its branch sum, kept up to date as nodes are added. Valid while
   /// sums_valid_ (advance_root changes every depth: the next refresh_priorities sums again).
   struct RootChildSum {
@@ -269,7 +274,6 @@ class MotionTree {
   bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
   /// set_command() may skip re-prioritising a repeat of the same command and placement.
   bool matches_current_ = false;
-  uint32_t next_order_ = 0;
   static constexpr float kWalkingPace_mps = 1.2f;  // at or above it a motion gets full pace credit
   vec2 command_{0.0f};
   bool crouch_ = false;

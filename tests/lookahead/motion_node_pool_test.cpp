@@ -47,7 +47,7 @@ Play play(MotionTree& t, const MotionLibrary& lib, int k) {
   for (int step = 0; step < 30; ++step) {
     const int child = t.select_child();
     if (child < 0) break;
-    const Placement at = t.node(child).start;
+    const Placement at = t.start_of(child);
     t.advance_root(child);
     t.set_command(key_of(k, step), at);
     t.grow(GrowBudget::expansions(40));
@@ -159,8 +159,8 @@ TEST(MotionNodePool, SpareChunksAreBounded) {
   }
   const size_t peak = pool.bytes_in_use();
   ASSERT_GT(peak, 6 * 20 * kChunkBytes) << "large trees first";
-  for (const auto& t : trees) t->reset(walk_segment(lib), t->node(t->root()).start);  // keeps what it had filled
-  for (const auto& t : trees) t->reset(walk_segment(lib), t->node(t->root()).start);  // now one node: one chunk
+  for (const auto& t : trees) t->reset(walk_segment(lib), t->start_of(t->root()));  // keeps what it had filled
+  for (const auto& t : trees) t->reset(walk_segment(lib), t->start_of(t->root()));  // now one node: one chunk
   EXPECT_EQ(pool.bytes_in_use(), 6 * kChunkBytes);
   EXPECT_LE(pool.bytes_spare(), 32 * kChunkBytes) << "at most the pool's minimum spare is kept";
   EXPECT_LT(pool.bytes_in_use() + pool.bytes_spare(), peak / 4);

@@ -44,7 +44,7 @@ TEST(TreeSummary, SamplesCarryTheirNodesSegmentAndStartHeading) {
 
   // Map each sample back to its node: sample 0 is the root; every other one is the child of its
   // parent's node with the same segment and (quantised) end.
-  const vec2 origin = tree.node(tree.root()).start.pos_m;
+  const vec2 origin = tree.start_of(tree.root()).pos_m;
   std::vector<int> node_of(samples.size(), -1);
   node_of[0] = tree.root();
   for (size_t i = 0; i < samples.size(); ++i) {
@@ -53,23 +53,23 @@ TEST(TreeSummary, SamplesCarryTheirNodesSegmentAndStartHeading) {
       ASSERT_LT(s.parent(), i);
       for (int k = tree.node(node_of[s.parent()]).first_child; k >= 0; k = tree.node(k).next_sibling) {
         const MotionTreeNode& c = tree.node(k);
-        if (c.segment == s.segment() &&
-            std::lround((c.end_pos_m.x - origin.x) * 100.0f) == s.dx_cm() &&
-            std::lround((c.end_pos_m.y - origin.y) * 100.0f) == s.dz_cm())
+        if (tree.segment_of(k) == s.segment() &&
+            std::lround((c.end.pos_m.x - origin.x) * 100.0f) == s.dx_cm() &&
+            std::lround((c.end.pos_m.y - origin.y) * 100.0f) == s.dz_cm())
           node_of[i] = k;
       }
       ASSERT_GE(node_of[i], 0) << "sample " << i << " matches no child of its parent's node";
     }
-    const MotionTreeNode& n = tree.node(node_of[i]);
-    EXPECT_EQ(s.segment(), static_cast<uint16_t>(n.segment)) << "sample " << i;
-    EXPECT_EQ(s.start_heading(), protocol::quantize_angle(n.start.heading_rad)) << "sample " << i;
+    const Placement node_start = tree.start_of(node_of[i]);
+    EXPECT_EQ(s.segment(), static_cast<uint16_t>(tree.segment_of(node_of[i]))) << "sample " << i;
+    EXPECT_EQ(s.start_heading(), protocol::quantize_angle(node_start.heading_rad)) << "sample " << i;
     // What the client rebuilds the ghost from: start = parent's end (origin for the root) plus
     // this heading; it must be the node's own start placement.
     const vec2 start_pos = i == 0 ? origin
                                   : origin + 0.01f * vec2(static_cast<float>(samples[s.parent()].dx_cm()),
                                                           static_cast<float>(samples[s.parent()].dz_cm()));
-    EXPECT_LT(glm::length(start_pos - n.start.pos_m), 0.011f) << "sample " << i;
-    EXPECT_NEAR(std::remainder(protocol::dequantize_angle(s.start_heading()) - n.start.heading_rad, 2.0f * kPi),
+    EXPECT_LT(glm::length(start_pos - node_start.pos_m), 0.011f) << "sample " << i;
+    EXPECT_NEAR(std::remainder(protocol::dequantize_angle(s.start_heading()) - node_start.heading_rad, 2.0f * kPi),
                 0.0f, 1e-3f)
         << "sample " << i;
   }
