@@ -5,23 +5,28 @@
 
 namespace foresight::server {
 
-void TailEstimate::note(double ms) {
-  recent_[count_++ % recent_.size()] = ms;
-  mean_ = count_ == 1 ? ms : 0.9 * mean_ + 0.1 * ms;
-}
-
-double TailEstimate::ms() const {
-  const size_t n = std::min(count_, recent_.size());
-  if (n == 0) return 0;
-  std::array<double, 64> sorted = recent_;  // 64 values: a copy and a partial sort a tick
-  const size_t at = n * 9 / 10;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(at), sorted.begin() + static_cast<long>(n));
-  return std::max(mean_, sorted[at]);
-}
-
 LookaheadScheduler::LookaheadScheduler(const ServerConfig& config, const MotionLibrary& library,
                                        LookaheadWorkers& workers)
     : config_(config), library_(library), workers_(workers) {}
+
+namespace {
+
+int frames_left(const MotionLibrary& library, const LookaheadAvatar& a) {
+  return library.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
+}
+
+}  // namespace
+
+void LookaheadScheduler::take_inputs(std::span<GraphAvatar> avatars) {
+  GraphAvatar* const first = avatars.data();
+  workers_.run(static_cast<int>(avatars.size()), [this, first](int item, int) {
+    GraphAvatar& g = first[item];
+    if (g.input_changed || frames_left(library_, *g.avatar) <= 1) {
+      g.avatar->set_input(g.input);
+      g.input_changed = false;
+    }
+  });
+}
 
 void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clock::time_point tick_start,
                               TickRecord& record) {
@@ -32,9 +37,9 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
     return;
   }
   const double period_ms = 1000.0 / config_.tick_hz;
-  const double budget_ms = std::clamp(
-      period_ms - ms_between(tick_start, now) - tail_.ms() - overrun_ms_ - config_.tick_safety_margin_ms, 0.0,
-      config_.lookahead_budget_ms);
+  const double budget_ms =
+      std::clamp(period_ms - ms_between(tick_start, now) - overrun_ms_ - config_.tick_safety_margin_ms, 0.0,
+                 config_.lookahead_budget_ms);
   record.budget_ms = static_cast<float>(budget_ms);
   // Shared by need: a thin tree or a decision coming soon asks for more.
   weight_.resize(n);
@@ -42,9 +47,8 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
   double total = 0;
   for (size_t i = 0; i < n; ++i) {
     const LookaheadAvatar& a = *avatars[i].avatar;
-    const int left = library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
     const double thin = std::clamp(1.0 - a.tree().num_nodes() / 64.0, 0.0, 1.0);
-    const double soon = std::clamp(1.0 - left / 15.0, 0.0, 1.0);
+    const double soon = std::clamp(1.0 - frames_left(library_, a) / 15.0, 0.0, 1.0);
     weight_[i] = 1.0 + 2.0 * thin + soon;
     total += weight_[i];
   }
@@ -73,23 +77,18 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
       budget = GrowBudget::expansions(config_.expansions_per_avatar);
     }
     // Command matching measures v_k from where the avatar stands and strategies 1 and 4 re-sort
-    // the leaves (about 25 ns a node): at once when the command changes, just before a decision,
-    // and otherwise every resort_interval_ticks (1 = every tick, as the lab's replay does every
-    // frame). On the look-ahead threads, never per packet. The periodic re-sort is the first
-    // thing dropped when the tick runs late.
-    const int frames_left =
-        library_.graph.segments[static_cast<size_t>(a.playback().segment)].num_frames() - a.playback().frame;
+    // the leaves (about 25 ns a node): at once when the command changes and just before a
+    // decision (take_inputs), and otherwise every resort_interval_ticks (1 = every tick, as the
+    // lab's replay does every frame), here. On the look-ahead threads, never per packet. The
+    // periodic re-sort is the first thing dropped when the tick runs late.
     const bool periodic =
         (phase.tick + g.id) % static_cast<uint32_t>(config_.resort_interval_ticks) == 0 && (!timed || Clock::now() < phase.end);
-    if (g.input_changed || frames_left <= 1 || periodic) {
-      a.set_input(g.input);
-      g.input_changed = false;
-    }
+    if (periodic) a.set_input(g.input);
     expansions_[static_cast<size_t>(item)] = a.grow(budget).expansions;
   });
   record.lookahead_ms = static_cast<float>(ms_between(now, Clock::now()));
-  // Past the deadline the avatars left still take their new commands (a re-sort each) and the
-  // workers finish their last slice: about a millisecond at 1000 avatars, taken off the next budgets.
+  // Past the deadline the workers finish their last leaf and go through the avatars left: taken
+  // off the next budgets.
   if (config_.expansions_per_avatar <= 0 && budget_ms > 0)
     overrun_ms_ = 0.9 * overrun_ms_ + 0.1 * std::max(0.0, record.lookahead_ms - budget_ms);
   int64_t expansions = 0;

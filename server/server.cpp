@@ -208,16 +208,19 @@ void Server::run_tick(Clock::time_point now) {
   // 3 think: fighters choose their command as players' keys arrived in 1.
   think_fighters();
   record.receive_ms = timer.lap_ms();
-  // 4 look ahead, then 5 decide and play: the order of LookaheadAvatar (set_input, grow, step).
-  scheduler_->grow(graph_avatars_.items(), tick_, timer.start(), record);
-  timer.lap_ms();  // the scheduler times its own part (record.lookahead_ms)
+  // 4 the trees take the new commands, then 5 decide and play.
+  scheduler_->take_inputs(graph_avatars_.items());
   advance(record);
   record.advance_ms = timer.lap_ms();
-  // 6 send.
+  // 6 send: the players see this tick's motion without waiting for the look-ahead.
   send_snapshots(now);
   check_contacts();
   record.send_ms = timer.lap_ms();
-  // 7 finish.
+  // 7 look ahead until the tick's deadline, for the decisions of the ticks to come: last, so the
+  // growth, and nothing else, gives way when the stages before it run slow.
+  scheduler_->grow(graph_avatars_.items(), tick_, timer.start(), record);
+  timer.lap_ms();  // the scheduler times its own part (record.lookahead_ms)
+  // 8 finish.
   finish_tick(record, timer);
 }
 
@@ -235,7 +238,6 @@ void Server::run_admin_commands() {
 }
 
 void Server::finish_tick(TickRecord& record, const StageTimer& timer) {
-  scheduler_->note_tail_ms(record.advance_ms + record.send_ms);
   record.players = num_players();
   // Every few seconds the heap's free pages go back to the system (process_memory.hpp); its
   // millisecond counts in this tick.

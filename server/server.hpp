@@ -7,15 +7,18 @@
 //                dropped and counted by reason; queued joins get an avatar; silent sessions end
 //   2 commands   the supervisor's and the admin endpoint's commands queued since the last tick
 //   3 think      NPC fighters perceive the nearest player and set their command
-//   4 look       every motion-graph avatar's feasible motion tree grows within what the tick
-//                leaves, shared by need, on `threads` cores (lookahead_scheduler.hpp)
+//   4 commands   each motion-graph avatar's tree takes its player's new command (re-ranked from
+//                where the avatar stands), on the workers (lookahead_scheduler.hpp)
 //   5 advance    each avatar plays the clip frames due; at a segment end it takes its tree's best
 //                child that keeps clear of the others' committed motion (reservations); fighters
 //                play their strikes; terrain avatars play a frame and plan a step where one ends
 //   6 send       at snapshot_hz: the avatars in id order gathered once, then each client's view
 //                built, delta-coded, sealed and sent on the workers (snapshot_builder.hpp); the
 //                contact check
-//   7 finish     tick figures, every 5 s the heap's free pages back to the system
+//   7 look       every motion-graph avatar's feasible motion tree grows until the tick's
+//                deadline, shared by need, on `threads` cores, for the decisions to come: last,
+//                so that a slow stage before it shortens the growth, not the tick
+//   8 finish     tick figures, every 5 s the heap's free pages back to the system
 //                (process_memory.hpp), the overrun line, the admin endpoint's figures, the status
 //                line
 //

@@ -48,20 +48,45 @@ TEST(LookaheadScheduler, AWarmTickAllocatesNothing) {
   for (const server::GraphAvatar& g : avatars.items()) EXPECT_GE(g.avatar->tree().num_nodes(), 250) << "full";
 }
 
-// The room kept for advancing and sending follows their slow ticks, not their mean: with every
-// fifth tick 10 ms slower the estimate is the slow ticks' (the mean was 2 ms short of them), and
-// once they stop it comes back down.
-TEST(LookaheadScheduler, TheTailEstimateCoversTheSlowTicksOfLate) {
-  server::TailEstimate tail;
-  EXPECT_EQ(tail.ms(), 0.0);
-  for (int t = 0; t < 200; ++t) tail.note(t % 5 == 4 ? 20.0 : 10.0);
-  EXPECT_NEAR(tail.ms(), 20.0, 1e-9);
-  for (int t = 0; t < 64; ++t) tail.note(10.0);
-  EXPECT_NEAR(tail.ms(), 10.0, 0.1) << "64 steady ticks later";
-  // A steady tail is its own estimate.
-  server::TailEstimate steady;
-  for (int t = 0; t < 10; ++t) steady.note(7.0);
-  EXPECT_NEAR(steady.ms(), 7.0, 1e-9);
+// The growth is the tick's last stage and takes what the tick leaves: the period less what the
+// stages before it took and the margin, at most the cap. A tick whose earlier stages ran slow
+// (here: began 28 of its 33.3 ms ago, with a 6 ms margin) grows nothing and re-sorts nothing.
+TEST(LookaheadScheduler, TheGrowthTakesWhatTheTickLeavesAndNoMore) {
+  const MotionLibrary lib = motion_library_default();
+  Scene scene;
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(scene_world_load("arena", scene, world, error)) << error;
+  server::ServerConfig config;  // timed: 30 Hz, at most 8 ms, 6 ms margin
+  ASSERT_EQ(config.expansions_per_avatar, 0);
+  config.tick_hz = 30;
+  config.lookahead_budget_ms = 8.0;
+  config.tick_safety_margin_ms = 6.0;
+  config.resort_interval_ticks = 1;
+  server::LookaheadWorkers workers(1);
+  server::LookaheadScheduler scheduler(config, lib, workers);
+  server::HandleTable<server::GraphAvatar> avatars;
+  server::GraphAvatar g;
+  g.id = 1;
+  g.avatar = std::make_unique<LookaheadAvatar>(lib, world, MotionTreeConfig{}, find_spawn_segment(lib),
+                                               Placement{scene.spawns[0].pos_m, 0.0f});
+  g.input.camera_dir = {0.0f, 1.0f};
+  avatars.add(std::move(g));
+  scheduler.take_inputs(avatars.items());
+  const auto ago = [](double ms) {
+    return server::Clock::now() - std::chrono::duration_cast<server::Clock::duration>(std::chrono::duration<double, std::milli>(ms));
+  };
+  server::TickRecord late;
+  scheduler.grow(avatars.items(), 1, ago(28.0), late);
+  EXPECT_EQ(late.budget_ms, 0.0f);
+  EXPECT_EQ(late.expansions, 0);
+  EXPECT_EQ(avatars.items()[0].avatar->tree().num_nodes(), 1) << "only the root";
+  server::TickRecord early;
+  scheduler.grow(avatars.items(), 2, ago(5.0), early);
+  EXPECT_LE(early.budget_ms, 8.0f) << "the cap";
+  EXPECT_GT(early.budget_ms, 0.0f);
+  EXPECT_GT(early.expansions, 0);
+  EXPECT_GT(avatars.items()[0].avatar->tree().num_nodes(), 1);
 }
 
 TEST(LookaheadScheduler, InExpansionModeTheTreesDoNotDependOnTheWorkers) {
