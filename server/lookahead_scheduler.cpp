@@ -18,14 +18,14 @@ int frames_left(const MotionLibrary& library, const LookaheadAvatar& a) {
 }  // namespace
 
 void LookaheadScheduler::take_inputs(std::span<GraphAvatar> avatars) {
-  GraphAvatar* const first = avatars.data();
-  workers_.run(static_cast<int>(avatars.size()), [this, first](int item, int) {
-    GraphAvatar& g = first[item];
+  // Cheap (the trees re-rank when next used: the deciding ones in advance, the rest while
+  // growing), so on the tick thread: handing it to the workers cost more than it does.
+  for (GraphAvatar& g : avatars) {
     if (g.input_changed || frames_left(library_, *g.avatar) <= 1) {
       g.avatar->set_input(g.input);
       g.input_changed = false;
     }
-  });
+  }
 }
 
 void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clock::time_point tick_start,

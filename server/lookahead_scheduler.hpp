@@ -23,9 +23,9 @@ namespace foresight::server {
 class LookaheadScheduler {
  public:
   LookaheadScheduler(const ServerConfig& config, const MotionLibrary& library, LookaheadWorkers& workers);
-  /// Gives each avatar's tree its player's command when it changed or a decision is coming (a
-  /// re-rank from where the avatar stands; strategies 1 and 4 re-sort, about 25 ns a node), so
-  /// that the tick decides under the newest command. On the workers.
+  /// Gives each avatar's tree its player's command when it changed or a decision is coming (to
+  /// re-rank from where the avatar stands, when the tree is next used), so that the tick decides
+  /// under the newest command. On the tick thread.
   void take_inputs(std::span<GraphAvatar> avatars);
   /// Grows the trees of `avatars` until the tick's deadline; fills the record's budget,
   /// look-ahead time, expansions and tree sizes. `tick_start` is when the tick began, on the real clock.

@@ -8,7 +8,7 @@
 //   2 commands   the supervisor's and the admin endpoint's commands queued since the last tick
 //   3 think      NPC fighters perceive the nearest player and set their command
 //   4 commands   each motion-graph avatar's tree takes its player's new command (re-ranked from
-//                where the avatar stands), on the workers (lookahead_scheduler.hpp)
+//                where the avatar stands when next used) (lookahead_scheduler.hpp)
 //   5 advance    each avatar plays the clip frames due; at a segment end it takes its tree's best
 //                child that keeps clear of the others' committed motion (reservations); fighters
 //                play their strikes; terrain avatars play a frame and plan a step where one ends

@@ -174,24 +174,28 @@ void MotionTree::set_command(vec2 world_direction, const Placement& avatar, bool
   const vec2 command = len > 1e-4f && std::isfinite(len) ? world_direction / len : vec2(0.0f);
   // The same command from the same place matches every node as it does now (the server re-sorts
   // periodically; a standing avatar's full tree would be walked twice for nothing).
-  if (matches_current_ && !priorities_stale_ && crouch == crouch_ && command == command_ &&
-      avatar.pos_m == avatar_.pos_m && avatar.heading_rad == avatar_.heading_rad)
+  if (matches_current_ && crouch == crouch_ && command == command_ && avatar.pos_m == avatar_.pos_m &&
+      avatar.heading_rad == avatar_.heading_rad)
     return;
   matches_current_ = true;
   crouch_ = crouch;
   command_ = command;
   avatar_ = avatar;
+  command_changed_ = true;
+}
+
+// The walk is a recomputation from the root under the command and placement kept, so doing it
+// when the tree is next used gives what doing it in set_command() and after every change since
+// would have given.
+void MotionTree::update_priorities_if_stale() {
+  if (!priorities_stale_ && !command_changed_) return;
   refresh_priorities();
+  // Strategies that keep the priorities nodes were created with keep their queue too, unless
+  // the queue itself is stale (advance_root).
   if (priorities_stale_ || config_.strategy == Strategy::kCommand || config_.strategy == Strategy::kHybrid)
     rebuild_queue();
   priorities_stale_ = false;
-}
-
-void MotionTree::update_priorities_if_stale() {
-  if (!priorities_stale_) return;
-  refresh_priorities();
-  rebuild_queue();
-  priorities_stale_ = false;
+  command_changed_ = false;
 }
 
 void MotionTree::refresh_priorities() {

@@ -127,9 +127,12 @@ class MotionTree {
 
   /// The player's command as a world ground direction (zero = stop) and where the avatar stands
   /// and faces now (v_k is measured from there; "stop" prefers staying and facing the same way).
-  /// For re-sorting strategies (command, hybrid) this recomputes every leaf's priority and
-  /// rebuilds the queue; breadth-first, command-no-resort and statistic keep the priorities nodes
-  /// were created with.
+  /// For re-sorting strategies (command, hybrid) every leaf's priority is recomputed and the queue
+  /// rebuilt; breadth-first, command-no-resort and statistic keep the priorities nodes were
+  /// created with. The walk that does it (about 25 ns a node) is left to the tree's next
+  /// grow(), select_child() or ranked_children(), on whichever thread makes that call: the
+  /// server hands every avatar its command before deciding, and only the avatars deciding walk
+  /// their trees there; the others walk on the look-ahead threads.
   /// `crouch` (the player's crouch button) makes segments without kTagCrouch a poorer match, so
   /// the avatar crouches where it can and stands where it must.
   void set_command(vec2 world_direction, const Placement& avatar, bool crouch = false);
@@ -271,7 +274,8 @@ class MotionTree {
   std::vector<RootChildSum> root_sums_;
   bool sums_valid_ = false;
   int root_ = -1;
-  bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities().
+  bool priorities_stale_ = false;  ///< Set by advance_root(), cleared by update_priorities_if_stale().
+  bool command_changed_ = false;   ///< Set by set_command(), cleared by update_priorities_if_stale().
   /// set_command() may skip re-prioritising a repeat of the same command and placement.
   bool matches_current_ = false;
   static constexpr float kWalkingPace_mps = 1.2f;  // at or above it a motion gets full pace credit

@@ -342,6 +342,7 @@ TEST(MotionTree, OnlyResortingStrategiesReorderWhenTheCommandChanges) {
     std::vector<float> before;
     t.for_each_node([&](int, const MotionTreeNode& n) { before.push_back(n.grow_priority); });
     t.set_command(vec2(-1, 0), kOpen);
+    t.grow(GrowBudget::expansions(0));  // priorities are brought up to date when the tree is next used
     std::vector<float> after;
     t.for_each_node([&](int, const MotionTreeNode& n) { after.push_back(n.grow_priority); });
     if (s == Strategy::kCommand)
