@@ -4,13 +4,6 @@
 
 namespace foresight::server {
 
-namespace {
-void run_chunk(const std::function<void(int, int)>& job, int items, int workers, int worker) {
-  const int begin = items * worker / workers, end = items * (worker + 1) / workers;
-  for (int i = begin; i < end; ++i) job(i, worker);
-}
-}  // namespace
-
 LookaheadWorkers::LookaheadWorkers(int threads) {
   for (int w = 1; w < std::max(threads, 1); ++w) pool_.emplace_back([this, w] { worker_main(w); });
 }
@@ -24,22 +17,40 @@ LookaheadWorkers::~LookaheadWorkers() {
   for (std::thread& t : pool_) t.join();
 }
 
+int LookaheadWorkers::drain(const std::function<void(int, int)>& job, int items, int worker) {
+  int ran = 0;
+  for (;;) {
+    const int first = next_.fetch_add(grain_, std::memory_order_relaxed);
+    if (first >= items) return ran;
+    const int end = std::min(first + grain_, items);
+    for (int i = first; i < end; ++i) job(i, worker);
+    ran += end - first;
+  }
+}
+
 void LookaheadWorkers::run(int items, const std::function<void(int, int)>& job) {
-  if (pool_.empty()) {
-    run_chunk(job, items, 1, 0);
+  if (pool_.empty() || items <= 1) {
+    for (int i = 0; i < items; ++i) job(i, 0);
     return;
   }
   {
     std::lock_guard lock(mutex_);
     job_ = &job;
     items_ = items;
-    pending_ = static_cast<int>(pool_.size());
+    // About 16 claims a thread: fine enough that a late thread's share is small, coarse enough
+    // that the shared counter is touched a few dozen times a run.
+    grain_ = std::max(1, items / (threads() * 16));
+    next_.store(0, std::memory_order_relaxed);
     ++generation_;
+    open_ = true;
   }
   wake_.notify_all();
-  run_chunk(job, items, threads(), 0);
+  drain(job, items, 0);
+  // Every item is claimed: close the run to workers not yet in it, and wait for those in it to
+  // finish the items they claimed.
   std::unique_lock lock(mutex_);
-  done_.wait(lock, [this] { return pending_ == 0; });
+  open_ = false;
+  done_.wait(lock, [this] { return inside_ == 0; });
   job_ = nullptr;
 }
 
@@ -50,16 +61,18 @@ void LookaheadWorkers::worker_main(int worker) {
     int items = 0;
     {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+      wake_.wait(lock, [&] { return stop_ || (open_ && generation_ != seen); });
       if (stop_) return;
       seen = generation_;
       job = job_;
       items = items_;
+      ++inside_;
     }
-    run_chunk(*job, items, threads(), worker);
+    const int ran = drain(*job, items, worker);
+    items_by_others_.fetch_add(ran, std::memory_order_relaxed);
     {
       std::lock_guard lock(mutex_);
-      --pending_;
+      --inside_;
     }
     done_.notify_one();
   }
