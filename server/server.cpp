@@ -6,6 +6,7 @@
 
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
+#include "thread_sched.hpp"
 #include "transport/scene_transfer.hpp"
 #include "world/data_paths.hpp"
 #include "world/scene_load.hpp"
@@ -194,6 +195,8 @@ void Server::close_sessions() {
 void Server::run_tick(Clock::time_point now) {
   // `now` is the protocol's clock (tests pass their own); the work is measured on the real one.
   StageTimer timer;
+  static thread_local const ThreadSchedClock sched_clock;  // the thread running the ticks
+  const ThreadSchedTimes sched_start = sched_clock.read();
   last_tick_ns_.store(std::chrono::duration_cast<std::chrono::nanoseconds>(timer.start().time_since_epoch()).count(),
                       std::memory_order_relaxed);
   ++tick_;
@@ -221,6 +224,9 @@ void Server::run_tick(Clock::time_point now) {
   scheduler_->grow(graph_avatars_.items(), tick_, timer.start(), record);
   timer.lap_ms();  // the scheduler times its own part (record.lookahead_ms)
   // 8 finish.
+  const ThreadSchedTimes sched_end = sched_clock.read();
+  record.on_cpu_ms = static_cast<float>(static_cast<double>(sched_end.on_cpu_ns - sched_start.on_cpu_ns) * 1e-6);
+  record.waiting_ms = static_cast<float>(static_cast<double>(sched_end.waiting_ns - sched_start.waiting_ns) * 1e-6);
   finish_tick(record, timer);
 }
 
@@ -248,10 +254,11 @@ void Server::finish_tick(TickRecord& record, const StageTimer& timer) {
   if (overrun && tick_ >= next_overrun_log_tick_) {  // at most one line a second
     next_overrun_log_tick_ = tick_ + static_cast<uint32_t>(config_.tick_hz);
     std::fprintf(stderr,
-                 "foresight-server: tick %u overran: %.1f ms (receive %.1f, look-ahead %.1f of %.1f, advance %.1f, "
-                 "send %.1f), %d players, %llu overruns so far\n",
-                 tick_, record.tick_ms, record.receive_ms, record.lookahead_ms, record.budget_ms, record.advance_ms,
-                 record.send_ms, record.players, static_cast<unsigned long long>(stats_.overruns()));
+                 "foresight-server: tick %u overran: %.1f ms (receive %.1f, advance %.1f, send %.1f, look-ahead %.1f "
+                 "of %.1f; the tick thread on a CPU %.1f, waiting for one %.1f), %d players, %llu overruns so far\n",
+                 tick_, record.tick_ms, record.receive_ms, record.advance_ms, record.send_ms, record.lookahead_ms,
+                 record.budget_ms, record.on_cpu_ms, record.waiting_ms, record.players,
+                 static_cast<unsigned long long>(stats_.overruns()));
   }
   if (admin_) publish_admin(Clock::now());
   const auto status_ticks = static_cast<uint32_t>(config_.status_every_s * config_.tick_hz);

@@ -15,6 +15,8 @@ struct TickRecord {
   float advance_ms = 0;     ///< Playing frames and deciding (reservations included).
   float send_ms = 0;        ///< Snapshots and the contact check.
   float terrain_ms = 0;     ///< Terrain avatars' frames and step plans (part of advance_ms).
+  float on_cpu_ms = 0;      ///< The tick thread's time on a CPU during the tick (thread_sched.hpp).
+  float waiting_ms = 0;     ///< The tick thread's time runnable but waiting for a CPU.
   int terrain_plans = 0;    ///< Terrain step plans (and turns on the spot) tried this tick.
   int64_t expansions = 0;
   int tree_size_min = 0;    ///< -1: no players this tick.
