@@ -52,7 +52,7 @@ void LookaheadScheduler::grow(std::span<GraphAvatar> avatars, uint32_t tick, Clo
     weight_[i] = 1.0 + 2.0 * thin + soon;
     total += weight_[i];
   }
-  // Each worker spends up to budget_ms in parallel: its avatars' shares add up to its time.
+  // The threads spend up to budget_ms each, in parallel: the avatars' shares add up to their time.
   const double per_weight_ms = budget_ms * workers_.threads() / total;
   const Clock::time_point end =
       now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(budget_ms));
