@@ -617,11 +617,19 @@ bool Server::place_is_free_now(const Placement& p) const {
   return terrain_mode_ ? terrain_place_free(p) : !reservations_.blocks(-1, library_, spawn_segment_, p);
 }
 
-bool Server::find_spawn(Placement& out) const {
-  for (const Placement& p : spawn_places_) {
-    if (place_is_free_now(p)) {
-      out = p;
-      return true;
+bool Server::find_spawn(Placement& out) {
+  spawn_place_taken_at_.resize(spawn_places_.size(), 0);
+  for (const bool recent_too : {false, true}) {
+    for (size_t i = 0; i < spawn_places_.size(); ++i) {
+      uint32_t& taken_at = spawn_place_taken_at_[i];
+      const bool recent = taken_at != 0 && tick_ - taken_at < kSpawnRecheckTicks;
+      if (recent != recent_too) continue;  // the first pass skips them, the second takes only them
+      const bool free = place_is_free_now(spawn_places_[i]);
+      taken_at = tick_;  // given out now, or taken
+      if (free) {
+        out = spawn_places_[i];
+        return true;
+      }
     }
   }
   return false;

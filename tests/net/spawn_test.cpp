@@ -84,5 +84,35 @@ TEST(Spawn, JoinsFindTheFreePlacesNearASpawnThatDoesNotFitThenAreRefusedAsNoSpaw
   EXPECT_EQ(server.counters().spawn_refusals, 1u);
 }
 
+// A join passes over the places found taken in the last half second (in a burst of joins they
+// are still taken: checking them again made each join cost O(players)), but not when nothing
+// else is free: in the full room, a player who leaves frees a place the next join takes at once,
+// where the body fits and clear of everybody.
+TEST(Spawn, APlaceFreedInAFullRoomIsGivenToTheNextJoinAtOnce) {
+  server::Server server;
+  server::Clock::time_point now = server::Clock::now();
+  std::string error;
+  ASSERT_TRUE(server.start(test::test_server_config(write_small_room().string()), error)) << error;
+  std::vector<std::unique_ptr<RawClient>> clients;
+  std::vector<uint8_t> refuse;
+  for (int i = 0; i < 40 && refuse.empty(); ++i) {
+    clients.push_back(std::make_unique<RawClient>(server.port()));
+    if (!clients.back()->connect(server, now, server.library().content_hash, &refuse)) clients.pop_back();
+  }
+  ASSERT_FALSE(refuse.empty()) << "the room filled up";
+  ASSERT_GE(clients.size(), 2u);
+  const Placement freed = server.avatar(clients.front()->avatar)->playback().segment_start;
+  RawClient& leaving = *clients.front();
+  leaving.send_session(protocol::write_disconnect(leaving.writer_, leaving.session));
+  server.run_tick(now += std::chrono::milliseconds(1));
+  clients.push_back(std::make_unique<RawClient>(server.port()));
+  refuse.clear();
+  ASSERT_TRUE(clients.back()->connect(server, now, server.library().content_hash, &refuse))
+      << "the freed place, found taken a few ticks ago, is free now";
+  const Placement given = server.avatar(clients.back()->avatar)->playback().segment_start;
+  EXPECT_LT(glm::length(given.pos_m - freed.pos_m), 0.01f) << "the only free place is the one left";
+  EXPECT_EQ(server.counters().avatar_contacts, 0u);
+}
+
 }  // namespace
 }  // namespace foresight
