@@ -623,7 +623,9 @@ bool Server::find_spawn(Placement& out) {
     for (size_t i = 0; i < spawn_places_.size(); ++i) {
       uint32_t& taken_at = spawn_place_taken_at_[i];
       const bool recent = taken_at != 0 && tick_ - taken_at < kSpawnRecheckTicks;
-      if (recent != recent_too) continue;  // the first pass skips them, the second takes only them
+      // The first pass looks at the places not found taken lately; the second at those found
+      // taken in the ticks before this one (not again at those this tick's joins just checked).
+      if (recent_too ? (!recent || taken_at == tick_) : recent) continue;
       const bool free = place_is_free_now(spawn_places_[i]);
       taken_at = tick_;  // given out now, or taken
       if (free) {
