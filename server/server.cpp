@@ -618,7 +618,6 @@ bool Server::place_is_free_now(const Placement& p) const {
 }
 
 bool Server::find_spawn(Placement& out) {
-  spawn_place_taken_at_.resize(spawn_places_.size(), 0);
   for (const bool recent_too : {false, true}) {
     for (size_t i = 0; i < spawn_places_.size(); ++i) {
       uint32_t& taken_at = spawn_place_taken_at_[i];
@@ -658,6 +657,7 @@ bool Server::plan_spawn_places(std::string& error) {
                    sp.name.c_str(), static_cast<double>(sp.pos_m.x), static_cast<double>(sp.pos_m.y), why.c_str());
   }
   spawn_places_ = free_places_around(around, kMaxSpawnPlaces);
+  spawn_place_taken_at_.assign(spawn_places_.size(), 0);
   if (spawn_places_.empty()) {
     error = "scene '" + scene_.name + "': no place within 8 m of any spawn fits the avatar's standing body";
     return false;

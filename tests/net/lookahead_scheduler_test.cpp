@@ -2,10 +2,9 @@
 // allocates nothing on the tick thread (the job handed to the workers fits std::function's inline
 // storage; a capture too many put it on the heap every tick), and in expansion-budget mode the
 // trees grown do not depend on how many workers grew them.
-#include "library_build/library_source.hpp"
+#include "lookahead/lookahead_fixture.hpp"
 #include "lookahead_scheduler.hpp"
 #include "support/alloc_counter.hpp"
-#include "world/data_paths.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,11 +12,9 @@ namespace foresight {
 namespace {
 
 TEST(LookaheadScheduler, AWarmTickAllocatesNothing) {
-  const MotionLibrary lib = motion_library_default();
-  Scene scene;
-  CollisionWorld world;
-  std::string error;
-  ASSERT_TRUE(scene_world_load("arena", scene, world, error)) << error;
+  const MotionLibrary& lib = test::default_library();
+  const Scene& scene = test::loaded_scene("arena").scene;
+  const CollisionWorld& world = test::loaded_scene("arena").world;
   server::ServerConfig config;
   config.expansions_per_avatar = 16;
   config.resort_interval_ticks = 1;  // the re-sort path every tick too
@@ -52,11 +49,9 @@ TEST(LookaheadScheduler, AWarmTickAllocatesNothing) {
 // stages before it took and the margin, at most the cap. A tick whose earlier stages ran slow
 // (here: began 28 of its 33.3 ms ago, with a 6 ms margin) grows nothing and re-sorts nothing.
 TEST(LookaheadScheduler, TheGrowthTakesWhatTheTickLeavesAndNoMore) {
-  const MotionLibrary lib = motion_library_default();
-  Scene scene;
-  CollisionWorld world;
-  std::string error;
-  ASSERT_TRUE(scene_world_load("arena", scene, world, error)) << error;
+  const MotionLibrary& lib = test::default_library();
+  const Scene& scene = test::loaded_scene("arena").scene;
+  const CollisionWorld& world = test::loaded_scene("arena").world;
   server::ServerConfig config;  // timed: 30 Hz, at most 8 ms, 6 ms margin
   ASSERT_EQ(config.expansions_per_avatar, 0);
   config.tick_hz = 30;
@@ -90,11 +85,9 @@ TEST(LookaheadScheduler, TheGrowthTakesWhatTheTickLeavesAndNoMore) {
 }
 
 TEST(LookaheadScheduler, InExpansionModeTheTreesDoNotDependOnTheWorkers) {
-  const MotionLibrary lib = motion_library_default();
-  Scene scene;
-  CollisionWorld world;
-  std::string error;
-  ASSERT_TRUE(scene_world_load("arena", scene, world, error)) << error;
+  const MotionLibrary& lib = test::default_library();
+  const Scene& scene = test::loaded_scene("arena").scene;
+  const CollisionWorld& world = test::loaded_scene("arena").world;
   server::ServerConfig config;
   config.expansions_per_avatar = 5;
   std::vector<int64_t> expansions;

@@ -84,15 +84,30 @@ TEST(Spawn, JoinsFindTheFreePlacesNearASpawnThatDoesNotFitThenAreRefusedAsNoSpaw
   EXPECT_EQ(server.counters().spawn_refusals, 1u);
 }
 
+/// A corridor 1 m wide and 4.6 m long (a level drawn by someone else: narrower than our scenes'
+/// passages), its spawn near the south end.
+std::filesystem::path write_narrow_corridor() {
+  const std::filesystem::path path = test::scratch_dir() / "narrow_corridor.json";
+  std::ofstream(path) << R"({"format": "foresight-scene", "version": 1, "name": "narrow-corridor",
+    "bounds": {"min": [0, 0], "max": [1.4, 5.0]},
+    "boxes": [
+      {"kind": "wall", "name": "west", "min": [0, 0, 0], "max": [0.2, 2.5, 5.0]},
+      {"kind": "wall", "name": "east", "min": [1.2, 0, 0], "max": [1.4, 2.5, 5.0]},
+      {"kind": "wall", "name": "south", "min": [0.2, 0, 0], "max": [1.2, 2.5, 0.2]},
+      {"kind": "wall", "name": "north", "min": [0.2, 0, 4.8], "max": [1.2, 2.5, 5.0]}],
+    "spawns": [{"name": "south-end", "pos": [0.7, 0.9], "heading_deg": 0}]})";
+  return path;
+}
+
 // A join passes over the places found taken in the last half second (in a burst of joins they
 // are still taken: checking them again made each join cost O(players)), but not when nothing
-// else is free: in the full room, a player who leaves frees a place the next join takes at once,
-// where the body fits and clear of everybody.
-TEST(Spawn, APlaceFreedInAFullRoomIsGivenToTheNextJoinAtOnce) {
+// else is free: in a full scene, a player who leaves frees a place the next join takes at once,
+// where the body fits and clear of everybody. In our small room and in a narrow corridor.
+void expect_freed_place_given_at_once(const std::filesystem::path& scene_path) {
   server::Server server;
   server::Clock::time_point now = server::Clock::now();
   std::string error;
-  ASSERT_TRUE(server.start(test::test_server_config(write_small_room().string()), error)) << error;
+  ASSERT_TRUE(server.start(test::test_server_config(scene_path.string()), error)) << error;
   std::vector<std::unique_ptr<RawClient>> clients;
   std::vector<uint8_t> refuse;
   for (int i = 0; i < 40 && refuse.empty(); ++i) {
@@ -112,6 +127,11 @@ TEST(Spawn, APlaceFreedInAFullRoomIsGivenToTheNextJoinAtOnce) {
   const Placement given = server.avatar(clients.back()->avatar)->playback().segment_start;
   EXPECT_LT(glm::length(given.pos_m - freed.pos_m), 0.01f) << "the only free place is the one left";
   EXPECT_EQ(server.counters().avatar_contacts, 0u);
+}
+
+TEST(Spawn, APlaceFreedInAFullSceneIsGivenToTheNextJoinAtOnce) {
+  ASSERT_NO_FATAL_FAILURE(expect_freed_place_given_at_once(write_small_room())) << "small room";
+  ASSERT_NO_FATAL_FAILURE(expect_freed_place_given_at_once(write_narrow_corridor())) << "narrow corridor";
 }
 
 }  // namespace
