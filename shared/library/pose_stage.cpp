@@ -12,6 +12,11 @@
 namespace foresight {
 namespace {
 
+constexpr float kPatch_m = 0.06f;          // how far a planted part's contact patch reaches round the joint
+constexpr float kPastEdge_m = 0.015f;      // how far past a step's edge a nudged part is put
+constexpr vec2 kPatchDirections[] = {vec2(1.0f, 0.0f), vec2(-1.0f, 0.0f), vec2(0.0f, 1.0f), vec2(0.0f, -1.0f)};
+constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where it was expected
+
 // 1 at the start, 0 at the end, flat at both (smoothstep of the time left).
 float decay(float left_s, float total_s) {
   if (total_s <= 0.0f || left_s <= 0.0f) return 0.0f;
@@ -50,6 +55,7 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   previous_.resize(n);
   previous_animated_.resize(n);
   offset_.resize(n);
+  landing_.resize(n);
   rotations_.resize(n);
   turn_share_.resize(n);
   const bool canonical = library.num_joints() == kCanonJointCount;
@@ -73,7 +79,7 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   shown_ = animated_;
   if (config_.inertialization) inertialize(dt_s);
   if (config_.turn_easing) ease_turn(state, dt_s);
-  if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(dt_s);
+  if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
   if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
   previous_ = shown_;
@@ -107,32 +113,129 @@ void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
   }
 }
 
-void PoseStage::adapt_to_ground(float dt_s) {
+// The ground under the ball of `foot` where the clip next plants that foot: the first planted
+// frame of the playing segment after this one, or the segment's end (where its successor starts)
+// if the foot lands later. Steering may still turn the segment; this is asked again every frame.
+bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s) {
+  const Segment& seg = library_.graph.segments[state.segment];
+  const int last_clip_frame = library_.clips[seg.clip].num_frames - 1;
+  const uint8_t bits = foot_ball_bit(foot) | foot_heel_bit(foot);
+  PlaybackState landing = state;
+  uint8_t lands = 0;
+  for (landing.frame = state.frame + 1; landing.frame < seg.num_frames(); ++landing.frame)
+    if ((lands = library_.foot_contact_at(seg.clip, std::min(seg.first_frame + landing.frame, last_clip_frame)) & bits)) break;
+  in_s = (static_cast<float>(landing.frame - state.frame) - frame_alpha) / library_.clips[seg.clip].fps;
+  playback_pose(library_, landing, pose_);
+  fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, landing_, rotations_);
+  // It will rest as a planted foot does (adapt_to_ground): on its heel, or on its ball when only
+  // the ball lands or the ball's ground is a step above the heel's.
+  const vec3 heel = landing_[static_cast<size_t>(foot_heel_joint(foot))], ball = landing_[static_cast<size_t>(foot_ball_joint(foot))];
+  float gh = 0.0f, gb = 0.0f;
+  const bool has_heel = lowest_ground_near(ground(heel), gh), has_ball = lowest_ground_near(ground(ball), gb);
+  const bool on_ball = lands == foot_ball_bit(foot) || (has_ball && has_heel && gb - gh > 0.5f * glm::length(ball - heel));
+  height = on_ball || !has_heel ? gb : gh;
+  return on_ball || !has_heel ? has_ball : has_heel;
+}
+
+// The shortest move of p on the ground plane along an axis that puts it over ground within 1 cm
+// of `height` (the edge at most kPatch_m away), and kPastEdge_m past the edge; none if no such.
+vec2 PoseStage::nudge_onto(vec2 p, float height) const {
+  const auto on = [&](vec2 q) {
+    float g = 0.0f;
+    return terrain_height_at(*ground_, q, g) && std::abs(g - height) <= 0.01f;
+  };
+  if (on(p)) return vec2(0.0f);
+  vec2 best(0.0f);
+  float shortest = 2.0f;
+  for (const vec2 d : kPatchDirections) {
+    if (!on(p + kPatch_m * d)) continue;
+    float off = 0.0f, in = 1.0f;  // the edge lies between
+    for (int i = 0; i < 6; ++i) (on(p + (0.5f * (off + in)) * kPatch_m * d) ? in : off) = 0.5f * (off + in);
+    if (in < shortest) shortest = in, best = (in * kPatch_m + kPastEdge_m) * d;
+  }
+  return best;
+}
+
+// The ground at p, or the lower side of a step's edge within kLandingMargin_m of it: where a
+// swinging foot will land moves by a few cm while steering turns and a transition blends in, and
+// a foot that then lands on the edge is nudged off it (adapt_to_ground).
+bool PoseStage::lowest_ground_near(vec2 p, float& height) const {
+  if (!terrain_height_at(*ground_, p, height)) return false;
+  for (const vec2 d : kPatchDirections) {
+    float g = 0.0f;
+    if (terrain_height_at(*ground_, p + kLandingMargin_m * d, g)) height = std::min(height, g);
+  }
+  return true;
+}
+
+void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, float dt_s) {
   if (library_.num_joints() <= kCanonRightToeEnd) return;
   // The ground is read where each part will be shown: a locked foot (lock_foot, next) is moved on
   // the ground plane so its held part stands where it is held, and its other parts with it.
+  // A foot being let go of (lifted, or landing again before its offset has decayed) is shown at
+  // the rest of that offset.
   vec2 lock_shift[2];
   for (int foot = 0; foot < 2; ++foot) {
     const FootLock& lock = feet_[foot];
-    lock_shift[foot] = lock.locked ? ground(lock.at) - ground(shown_[static_cast<size_t>(lock.joint)]) : vec2(0.0f);
+    if (lock.locked) lock_shift[foot] = ground(lock.at) - ground(shown_[static_cast<size_t>(lock.joint)]);
+    else lock_shift[foot] = decay(lock.release_left_s - dt_s, config_.release_s) * ground(lock.release);
   }
   const auto height_at = [this, &lock_shift](int foot, size_t joint, float& h) {
     return terrain_height_at(*ground_, ground(shown_[joint]) + lock_shift[foot], h);
   };
-  float target[2];
+  // A planted part rests on the surface under its contact patch (a few cm across) nearest the
+  // foot's height: a part that lands on or creeps over a step's edge stays on the step it stands
+  // on, the foot nudged off the edge, instead of taking the other step's height at once. The
+  // foot's other planted part is nudged onto that surface too when the foot could not pitch to
+  // its own (a ball a few cm past the edge the heel stands behind).
+  const auto foothold = [this, &lock_shift](int foot, size_t part, size_t other, bool other_down, float reach, float& h) {
+    const vec2 at = ground(shown_[part]) + lock_shift[foot];
+    for (const vec2 d : kPatchDirections) {
+      float g = 0.0f;
+      if (terrain_height_at(*ground_, at + kPatch_m * d, g) && std::abs(g - foot_y_[foot]) + 0.01f < std::abs(h - foot_y_[foot]))
+        h = g;
+    }
+    vec2 nudge = nudge_onto(at, h);
+    float g = 0.0f;
+    if (other_down && terrain_height_at(*ground_, ground(shown_[other]) + lock_shift[foot] + nudge, g) && std::abs(g - h) > reach)
+      nudge += nudge_onto(ground(shown_[other]) + lock_shift[foot] + nudge, h);
+    foothold_nudge_[foot] = nudge;
+    lock_shift[foot] += nudge;
+  };
+  float target[2], landing_in_s[2] = {0.0f, 0.0f};
+  bool planted_now[2];
   for (int foot = 0; foot < 2; ++foot) {
     const auto heel = static_cast<size_t>(foot_heel_joint(foot)), ball = static_cast<size_t>(foot_ball_joint(foot));
     const bool heel_down = contact_ & foot_heel_bit(foot), ball_down = contact_ & foot_ball_bit(foot);
     float gh = 0.0f, gb = 0.0f;
     const bool has_heel = height_at(foot, heel, gh), has_ball = height_at(foot, ball, gb);
     target[foot] = foot_y_[foot];  // over a hole: where it was
+    foothold_nudge_[foot] = vec2(0.0f);
+    planted_now[foot] = has_ground_ && ((heel_down && has_heel) || (ball_down && has_ball));
     // Across a stair's edge (the ball's ground higher than the foot can pitch to, below) the foot
     // rests on the step with its heel hanging, as a foot on a stair does; otherwise on its heel.
     const float pitch_reach = 0.5f * glm::length(shown_[ball] - shown_[heel]);
-    if (heel_down && ball_down && has_heel && has_ball && gb - gh > pitch_reach) target[foot] = gb;
-    else if (heel_down && has_heel) target[foot] = gh;  // the ball then pitches to its own ground
-    else if (ball_down && has_ball) target[foot] = gb;
-    else if (has_ball || has_heel) target[foot] = has_ball ? gb : gh;  // swinging: the front of the foot leads
+    if (heel_down && ball_down && has_heel && has_ball && gb - gh > pitch_reach) {
+      target[foot] = gb;
+      foothold(foot, ball, heel, false, pitch_reach, target[foot]);
+    } else if (heel_down && has_heel) {  // the ball then pitches to its own ground
+      target[foot] = gh;
+      foothold(foot, heel, ball, ball_down, pitch_reach, target[foot]);
+    } else if (ball_down && has_ball) {
+      target[foot] = gb;
+      foothold(foot, ball, heel, false, pitch_reach, target[foot]);
+    } else if (has_ball || has_heel) {
+      // Swinging: the foot goes to the ground where it will land, over the rest of the swing, so
+      // that it lands there (a step up is taken while the foot is in the air), and never below
+      // the ground under its front (a step down waits for the edge).
+      lowest_ground_near(ground(shown_[has_ball ? ball : heel]) + lock_shift[foot], target[foot]);  // ground there: has_*
+      float landing = 0.0f;
+      // A step up found too late to be taken without a pop is not: the foot lands short of it
+      // (a landing on its edge is nudged off, below) or on it and is raised by the spring.
+      if (landing_ground(state, frame_alpha, foot, landing, landing_in_s[foot]) &&
+          landing - foot_y_[foot] <= config_.max_foot_rise_mps * std::max(landing_in_s[foot], dt_s))
+        target[foot] = std::max(target[foot], landing);
+    }
   }
   const float body_target = std::min(target[0], target[1]);
   if (!has_ground_) {
@@ -141,8 +244,20 @@ void PoseStage::adapt_to_ground(float dt_s) {
     body_vy_ = 0.0f;
     has_ground_ = true;
   } else {
-    for (int foot = 0; foot < 2; ++foot)
-      spring_towards(foot_y_[foot], foot_vy_[foot], target[foot], config_.foot_ground_stiffness, dt_s);
+    for (int foot = 0; foot < 2; ++foot) {
+      // A planted foot a little off its ground (it landed where the swing did not expect) is put
+      // on it: a few cm in one frame is a smaller acceleration than a landing's own.
+      if (planted_now[foot] && std::abs(target[foot] - foot_y_[foot]) <= config_.planted_snap_m) {
+        foot_y_[foot] = target[foot];
+        foot_vy_[foot] = 0.0f;
+      } else if (landing_in_s[foot] > 0.0f) {
+        // In the air: at the rate that arrives when it lands (asked again every frame).
+        foot_vy_[foot] = (target[foot] - foot_y_[foot]) / std::max(landing_in_s[foot], dt_s);
+        foot_y_[foot] += foot_vy_[foot] * dt_s;
+      } else {
+        spring_towards(foot_y_[foot], foot_vy_[foot], target[foot], config_.foot_ground_stiffness, dt_s);
+      }
+    }
     spring_towards(body_y_, body_vy_, body_target, config_.body_ground_stiffness, dt_s);
   }
   // The body never stays above the lower foot: that leg could not reach down.
@@ -151,15 +266,18 @@ void PoseStage::adapt_to_ground(float dt_s) {
   for (int foot = 0; foot < 2; ++foot) {
     reach(foot, vec3(0.0f, foot_y_[foot] - body, 0.0f));
     // The foot aligned to the slope: the ball follows the ground's rise from where the foot is
-    // held, then the toe from the ball, each pitched about its parent by at most 30 degrees.
+    // held, then the toe from the ball, each pitched about its parent by at most 30 degrees. A
+    // swinging foot only lifts its front over ground that rises under it: it does not reach down
+    // (it may be carried above the ground under it towards a step up).
     const auto ankle = static_cast<size_t>(foot_heel_joint(foot)), toe = ankle + 2;
+    const bool planted = contact_ & (foot_heel_bit(foot) | foot_ball_bit(foot));
     float from = foot_y_[foot];
     for (size_t part = ankle + 1; part <= toe; ++part) {
       float g = 0.0f;
       if (!height_at(foot, part, g)) break;
       const vec3 parent = shown_[part - 1];
       const float length = glm::length(shown_[part] - parent);
-      const float rise = std::clamp(g - from, -0.5f * length, 0.5f * length);
+      const float rise = std::clamp(g - from, planted ? -0.5f * length : 0.0f, 0.5f * length);
       from = g;
       if (length < 1e-4f || std::abs(rise) < 1e-5f) continue;
       const vec3 raised = shown_[part] + vec3(0.0f, rise, 0.0f) - parent;
@@ -216,6 +334,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     }
     // Planted now, or rolling from heel to ball: hold the part planted where it is shown now.
     if (!f.locked || f.joint != joint) f = FootLock{true, joint, here + w * f.release, vec3(0.0f), 0.0f, false};
+    f.at += vec3(foothold_nudge_[foot].x, 0.0f, foothold_nudge_[foot].y);  // off a step's edge (adapt_to_ground)
     // Held on the ground plane only: its height is the clip's over the ground (adapt_to_ground).
     vec3 offset = f.at - here;
     offset.y = 0.0f;
@@ -229,15 +348,44 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     f.release_left_s = config_.release_s;
     f.stepping = false;
     reach(foot, offset);
+    if (ball) push_off(foot, here + offset);
     return;
   }
   f.locked = false;
   if (w > 0.0f) reach(foot, w * f.release);
 }
 
-// Moves the foot by `offset` (ankle and everything below it) and bends the leg to reach it: the
-// knee stays in the plane of hip, new ankle and the animated knee, at the bone lengths.
-void PoseStage::reach(int foot, vec3 offset) {
+// At push-off the body may have gone on further than the leg reaches to the held ball (a hold
+// nudged off a step's edge, steering): the heel rises, the foot turning about the ball, as a foot
+// pushing off does, instead of the ball being dragged from where it is held.
+void PoseStage::push_off(int foot, vec3 ball_at) {
+  const size_t hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
+  const size_t knee = hip + 1, ankle = hip + 2, ball = static_cast<size_t>(foot_ball_joint(foot));
+  if (glm::length(ground(shown_[ball]) - ground(ball_at)) < 1e-3f) return;  // reached
+  const float foot_length = glm::length(shown_[ball] - shown_[ankle]);
+  const float leg = 0.995f * (glm::length(animated_[knee] - animated_[hip]) + glm::length(animated_[ankle] - animated_[knee]));
+  const vec3 h = shown_[hip];
+  const float d = glm::length(ball_at - h);
+  if (d >= leg + foot_length || d < 1e-4f) return;  // out of reach even on the toes
+  // The ankle on the circle where the leg's reach meets the foot's length about the ball, nearest
+  // where the foot held rigidly would put it.
+  const vec3 u = (ball_at - h) / d;
+  const float along = (d * d + leg * leg - foot_length * foot_length) / (2.0f * d);
+  const float radius = std::sqrt(std::max(0.0f, leg * leg - along * along));
+  const vec3 centre = h + u * along;
+  vec3 side = shown_[ankle] + (ball_at - shown_[ball]) - centre;
+  side -= u * glm::dot(side, u);
+  if (glm::dot(side, side) < 1e-8f) side = vec3(0.0f, 1.0f, 0.0f) - u * u.y;
+  const vec3 toe_from_ball = shown_[ball + 1] - shown_[ball];
+  reach(foot, centre + glm::normalize(side) * radius - shown_[ankle], false);
+  shown_[ball] = ball_at;
+  shown_[ball + 1] = ball_at + toe_from_ball;
+}
+
+// Moves the foot by `offset` (the ankle, and everything below it unless !carry_foot) and bends the
+// leg to reach it: the knee stays in the plane of hip, new ankle and the animated knee, at the
+// bone lengths.
+void PoseStage::reach(int foot, vec3 offset, bool carry_foot) {
   const size_t hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
   const size_t knee = hip + 1, ankle = hip + 2;
   const vec3 h = shown_[hip], k = shown_[knee], a = shown_[ankle];
@@ -269,7 +417,8 @@ void PoseStage::reach(int foot, vec3 offset) {
   shown_[knee] = h + dir * along + bend * out;
   shown_[ankle] = target;
   // The foot below the ankle (ball, toe end) moves with it.
-  for (size_t j = ankle + 1; j <= ankle + 2 && j < shown_.size(); ++j) shown_[j] += moved;
+  if (carry_foot)
+    for (size_t j = ankle + 1; j <= ankle + 2 && j < shown_.size(); ++j) shown_[j] += moved;
 }
 
 }  // namespace foresight

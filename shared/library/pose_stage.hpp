@@ -18,12 +18,18 @@
 //     root exactly shows the steering's frame-to-frame reversals as knee and foot pops: measured.)
 //  4. Ground adaptation (with a terrain, set_ground). Flat-ground clips are shown over the ground
 //     under them: each foot is raised or lowered by leg IK to the ground under its planted part
-//     (the heel before the ball, where the lock holds it; under the ball while it swings, so a
-//     step's height is taken front first), the ball and toe follow the ground's rise along the
-//     foot (the foot pitched with the slope), and the whole body goes down to the lower foot (the
+//     (the heel before the ball, where the lock holds it; while it swings, the higher of the
+//     ground under the ball and the ground where the clip next plants it, so a step up is taken
+//     before the foot lands on it), the ball and toe of a planted foot follow the ground's rise
+//     along the foot (the foot pitched with the slope), and the whole body goes down to the lower foot (the
 //     pelvis is lowered on slopes and steps, so the lower leg reaches without stretching). Both
 //     heights follow their targets through critically damped springs: no pop where the ground
-//     steps, the body's slower than the feet's. A hole under a foot keeps its last height.
+//     steps, the body's slower than the feet's. A swinging foot instead goes at the rate that
+//     brings it to the ground it lands on as it lands (a step up found too late to take without
+//     a pop is not taken), and a planted foot a few cm off its ground is put on it. A planted part
+//     on or just past a step's edge (its contact patch, a few cm, on both sides) rests on the side
+//     nearest the foot's height, the foot nudged off the edge. A hole under a foot keeps its last
+//     height.
 //  5. Foot locking. While the clip plants a foot (foot_contact.hpp: heel or ball), that part keeps
 //     the ground position it had when it was planted (its height stays the clip's over the ground
 //     under it, 4.), through root steering, blends and the
@@ -33,7 +39,8 @@
 //     planted foot that it is more than `max_lock_offset_m` from where the clip has it (turning on
 //     the spot by root steering), the foot steps there: over `release_s`, lifted along a low arc
 //     (`step_height_m`), shown as not planted. When the clip lifts the foot the lock's offset
-//     decays over `release_s`.
+//     decays over `release_s`. A held ball the leg cannot reach any more (the body gone on at
+//     push-off) lifts the heel, the foot turning about the ball, instead of being dragged.
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"
@@ -61,6 +68,10 @@ struct PoseStageConfig {
   /// 80 mm/frame^2) stays under the built-in library's 99.9th percentile (127: no pop).
   float foot_ground_stiffness = 20.0f;
   float body_ground_stiffness = 10.0f;  ///< 1/s: the pelvis follows the lower foot more slowly.
+  /// A planted foot this close to its ground is put on it at once (a larger gap: the spring).
+  float planted_snap_m = 0.05f;
+  /// m/s: the fastest a swinging foot is raised towards a step up it will land on.
+  float max_foot_rise_mps = 1.2f;
 };
 
 class PoseStage {
@@ -99,15 +110,19 @@ class PoseStage {
   };
   void inertialize(float dt_s);
   void ease_turn(const PlaybackState& state, float dt_s);
-  void adapt_to_ground(float dt_s);
+  void adapt_to_ground(const PlaybackState& state, float frame_alpha, float dt_s);
+  bool landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s);
+  bool lowest_ground_near(vec2 p, float& height) const;
+  vec2 nudge_onto(vec2 p, float height) const;
   void lock_foot(int foot, float dt_s);
-  void reach(int foot, vec3 offset);
+  void reach(int foot, vec3 offset, bool carry_foot = true);
+  void push_off(int foot, vec3 ball_at);
 
   const MotionLibrary& library_;
   PoseStageConfig config_;
   float jump_m_ = 0.5f;
   Pose pose_;
-  std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_;
+  std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_, landing_;
   std::vector<quat> rotations_;
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
@@ -125,6 +140,7 @@ class PoseStage {
   bool has_ground_ = false;  ///< The ground heights below have been taken.
   float body_y_ = 0.0f, body_vy_ = 0.0f;        ///< The body's shown height offset and its rate.
   float foot_y_[2] = {0, 0}, foot_vy_[2] = {0, 0};  ///< Each foot's, before the body's.
+  vec2 foothold_nudge_[2] = {vec2(0.0f), vec2(0.0f)};  ///< This frame's move of a planted part off a step's edge.
 };
 
 }  // namespace foresight
