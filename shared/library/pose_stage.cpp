@@ -122,7 +122,8 @@ bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, in
   const uint8_t bits = foot_ball_bit(foot) | foot_heel_bit(foot);
   PlaybackState landing = state;
   uint8_t lands = 0;
-  for (landing.frame = state.frame + 1; landing.frame < seg.num_frames(); ++landing.frame)
+  // (A client may show a segment's end, frame == num_frames(), before its successor is known.)
+  for (landing.frame = std::min(state.frame + 1, seg.num_frames()); landing.frame < seg.num_frames(); ++landing.frame)
     if ((lands = library_.foot_contact_at(seg.clip, std::min(seg.first_frame + landing.frame, last_clip_frame)) & bits)) break;
   in_s = (static_cast<float>(landing.frame - state.frame) - frame_alpha) / library_.clips[seg.clip].fps;
   playback_pose(library_, landing, pose_);

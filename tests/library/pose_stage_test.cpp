@@ -246,6 +246,24 @@ float planted_ground_error(std::span<const vec3> shown, std::span<const vec3> an
   return worst;
 }
 
+// A client may show a segment at its end (frame == num_frames(), its successor not yet known):
+// on uneven ground the stage then looks for the swinging foot's landing within the segment only
+// (found by the client's screenshot tests under ASan: it sampled a frame past the end).
+TEST(PoseStage, ASegmentShownAtItsEndOnUnevenGround) {
+  const MotionLibrary& lib = library();
+  const int walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(walk, 0);
+  Terrain step;
+  step.steps.push_back({"step", vec3(-1.0f, 0.0f, 0.5f), vec3(1.0f, 0.12f, 3.0f)});
+  PoseStage stage(lib);
+  stage.set_ground(&step);
+  PlaybackState s{walk, 0, Placement{}, -1};
+  for (int f = 0; f <= lib.graph.segments[walk].num_frames(); ++f) {
+    s.frame = f;
+    for (const vec3& p : stage.update(s, f == 0 ? 0.0f : 1.0f / 30.0f)) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+  }
+}
+
 TEST(PoseStage, FeetStandOnTheGroundUnderThem) {
   const MotionLibrary& lib = library();
   const int idle = lib.graph.find_segment("idle");
