@@ -251,13 +251,21 @@ bool LookaheadAvatar::has_way_on(int segment, const Placement& start, int depth)
 
 // What is left of the segment goes (almost) nowhere: a standing loop at any frame, a stop once
 // its last foot is down and only the weight settles. Ending it here for a moving child shows a
-// jump of at most this much, and a start no longer waits for the settling.
+// jump of at most this much, and a start no longer waits for the settling. The body's height
+// counts too: a stand-up or crouch-down stays in place on the ground while the pelvis rises or
+// sinks (left half way, the head jumped 22 cm in one shown frame).
 bool LookaheadAvatar::may_end_early() const {
   const vec2 command = steering_command();
   if (playback_.frame <= 0 || glm::dot(command, command) < 1e-8f) return false;
   const Placement now = root();
   const Placement end = playback_next_start(library_, playback_);
-  return glm::length(end.pos_m - now.pos_m) < kEarlyEndMove_m &&
+  const Segment& seg = library_.graph.segments[playback_.segment];
+  const Clip& clip = library_.clips[seg.clip];
+  const int last = clip.num_frames - 1;
+  // From the frame shown last (this one is not, if the segment ends here).
+  const float rise = clip.frame_pos(std::min(seg.end_frame, last))[0].y -
+                     clip.frame_pos(std::min(seg.first_frame + playback_.frame - 1, last))[0].y;
+  return glm::length(end.pos_m - now.pos_m) < kEarlyEndMove_m && std::abs(rise) < kEarlyEndRise_m &&
          std::abs(wrap_angle(end.heading_rad - now.heading_rad)) < kEarlyEndTurn_rad;
 }
 

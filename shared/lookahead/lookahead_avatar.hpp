@@ -92,6 +92,7 @@ class LookaheadAvatar {
   static constexpr int kWayOnDepth = 2;  // segments a rotation must leave open ahead
   static constexpr float kEarlyEndMove_m = 0.02f;
   static constexpr float kEarlyEndTurn_rad = 0.035f;  // 2 deg
+  static constexpr float kEarlyEndRise_m = 0.05f;  // the pelvis's rise or fall left (a stand-up's last 3 frames)
   static constexpr float kWalkingDeadZone_rad = 0.26f;     // 15 deg
   static constexpr float kFacingCone_rad = 0.79f;          // 45 deg either side of the command
   static constexpr float kFacingStep_rad = 0.087f;         // 5 deg
