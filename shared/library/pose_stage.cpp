@@ -14,7 +14,8 @@ namespace {
 
 constexpr float kPatch_m = 0.06f;          // how far a planted part's contact patch reaches round the joint
 constexpr float kPastEdge_m = 0.015f;      // how far past a step's edge a nudged part is put
-constexpr vec2 kPatchDirections[] = {vec2(1.0f, 0.0f), vec2(-1.0f, 0.0f), vec2(0.0f, 1.0f), vec2(0.0f, -1.0f)};
+constexpr vec2 kPatchDirections[] = {vec2(1.0f, 0.0f), vec2(-1.0f, 0.0f), vec2(0.0f, 1.0f),
+                                     vec2(0.0f, -1.0f)};
 constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where it was expected
 
 // 1 at the start, 0 at the end, flat at both (smoothstep of the time left).
@@ -124,16 +125,19 @@ bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, in
   uint8_t lands = 0;
   // (A client may show a segment's end, frame == num_frames(), before its successor is known.)
   for (landing.frame = std::min(state.frame + 1, seg.num_frames()); landing.frame < seg.num_frames(); ++landing.frame)
-    if ((lands = library_.foot_contact_at(seg.clip, std::min(seg.first_frame + landing.frame, last_clip_frame)) & bits)) break;
+    if ((lands = bits & library_.foot_contact_at(seg.clip, std::min(seg.first_frame + landing.frame, last_clip_frame))))
+      break;
   in_s = (static_cast<float>(landing.frame - state.frame) - frame_alpha) / library_.clips[seg.clip].fps;
   playback_pose(library_, landing, pose_);
   fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, landing_, rotations_);
   // It will rest as a planted foot does (adapt_to_ground): on its heel, or on its ball when only
   // the ball lands or the ball's ground is a step above the heel's.
-  const vec3 heel = landing_[static_cast<size_t>(foot_heel_joint(foot))], ball = landing_[static_cast<size_t>(foot_ball_joint(foot))];
+  const vec3 heel = landing_[static_cast<size_t>(foot_heel_joint(foot))];
+  const vec3 ball = landing_[static_cast<size_t>(foot_ball_joint(foot))];
   float gh = 0.0f, gb = 0.0f;
   const bool has_heel = lowest_ground_near(ground(heel), gh), has_ball = lowest_ground_near(ground(ball), gb);
-  const bool on_ball = lands == foot_ball_bit(foot) || (has_ball && has_heel && gb - gh > 0.5f * glm::length(ball - heel));
+  const bool on_ball =
+      lands == foot_ball_bit(foot) || (has_ball && has_heel && gb - gh > 0.5f * glm::length(ball - heel));
   height = on_ball || !has_heel ? gb : gh;
   return on_ball || !has_heel ? has_ball : has_heel;
 }
@@ -189,17 +193,19 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
   // on, the foot nudged off the edge, instead of taking the other step's height at once. The
   // foot's other planted part is nudged onto that surface too when the foot could not pitch to
   // its own (a ball a few cm past the edge the heel stands behind).
-  const auto foothold = [this, &lock_shift](int foot, size_t part, size_t other, bool other_down, float reach, float& h) {
+  const auto foothold = [this, &lock_shift](int foot, size_t part, size_t other, bool other_down, float reach,
+                                            float& h) {
     const vec2 at = ground(shown_[part]) + lock_shift[foot];
     for (const vec2 d : kPatchDirections) {
       float g = 0.0f;
-      if (terrain_height_at(*ground_, at + kPatch_m * d, g) && std::abs(g - foot_y_[foot]) + 0.01f < std::abs(h - foot_y_[foot]))
+      if (terrain_height_at(*ground_, at + kPatch_m * d, g) &&
+          std::abs(g - foot_y_[foot]) + 0.01f < std::abs(h - foot_y_[foot]))
         h = g;
     }
     vec2 nudge = nudge_onto(at, h);
     float g = 0.0f;
-    if (other_down && terrain_height_at(*ground_, ground(shown_[other]) + lock_shift[foot] + nudge, g) && std::abs(g - h) > reach)
-      nudge += nudge_onto(ground(shown_[other]) + lock_shift[foot] + nudge, h);
+    const vec2 other_at = ground(shown_[other]) + lock_shift[foot] + nudge;
+    if (other_down && terrain_height_at(*ground_, other_at, g) && std::abs(g - h) > reach) nudge += nudge_onto(other_at, h);
     foothold_nudge_[foot] = nudge;
     lock_shift[foot] += nudge;
   };
@@ -229,7 +235,7 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
       // Swinging: the foot goes to the ground where it will land, over the rest of the swing, so
       // that it lands there (a step up is taken while the foot is in the air), and never below
       // the ground under its front (a step down waits for the edge).
-      lowest_ground_near(ground(shown_[has_ball ? ball : heel]) + lock_shift[foot], target[foot]);  // ground there: has_*
+      lowest_ground_near(ground(shown_[has_ball ? ball : heel]) + lock_shift[foot], target[foot]);  // found: has_*
       float landing = 0.0f;
       // A step up found too late to be taken without a pop is not: the foot lands short of it
       // (a landing on its edge is nudged off, below) or on it and is raised by the spring.
@@ -364,7 +370,8 @@ void PoseStage::push_off(int foot, vec3 ball_at) {
   const size_t knee = hip + 1, ankle = hip + 2, ball = static_cast<size_t>(foot_ball_joint(foot));
   if (glm::length(ground(shown_[ball]) - ground(ball_at)) < 1e-3f) return;  // reached
   const float foot_length = glm::length(shown_[ball] - shown_[ankle]);
-  const float leg = 0.995f * (glm::length(animated_[knee] - animated_[hip]) + glm::length(animated_[ankle] - animated_[knee]));
+  const float leg =
+      0.995f * (glm::length(animated_[knee] - animated_[hip]) + glm::length(animated_[ankle] - animated_[knee]));
   const vec3 h = shown_[hip];
   const float d = glm::length(ball_at - h);
   if (d >= leg + foot_length || d < 1e-4f) return;  // out of reach even on the toes

@@ -17,19 +17,18 @@
 //     while the shoulders and head keep facing a few frames longer. (Turning the legs with the
 //     root exactly shows the steering's frame-to-frame reversals as knee and foot pops: measured.)
 //  4. Ground adaptation (with a terrain, set_ground). Flat-ground clips are shown over the ground
-//     under them: each foot is raised or lowered by leg IK to the ground under its planted part
-//     (the heel before the ball, where the lock holds it; while it swings, the higher of the
-//     ground under the ball and the ground where the clip next plants it, so a step up is taken
-//     before the foot lands on it), the ball and toe of a planted foot follow the ground's rise
-//     along the foot (the foot pitched with the slope), and the whole body goes down to the lower foot (the
-//     pelvis is lowered on slopes and steps, so the lower leg reaches without stretching). Both
-//     heights follow their targets through critically damped springs: no pop where the ground
-//     steps, the body's slower than the feet's. A swinging foot instead goes at the rate that
-//     brings it to the ground it lands on as it lands (a step up found too late to take without
-//     a pop is not taken), and a planted foot a few cm off its ground is put on it. A planted part
-//     on or just past a step's edge (its contact patch, a few cm, on both sides) rests on the side
-//     nearest the foot's height, the foot nudged off the edge. A hole under a foot keeps its last
-//     height.
+//     under them: each planted foot is raised or lowered by leg IK to the ground under its planted
+//     part (the heel before the ball, where the lock holds it), the ball and toe following the
+//     ground's rise along the foot (the foot pitched with the slope); the whole body goes down to
+//     the lower foot (the pelvis is lowered on slopes and steps, so the lower leg reaches without
+//     stretching). A swinging foot goes to the ground where the clip next plants it, at the rate
+//     that brings it there as it lands (a step up is taken in the air; one found too late to take
+//     without a pop is not), never below the ground under its front (a step down waits for the
+//     edge). A planted part on or just past a step's edge (its contact patch, a few cm, reaching
+//     both sides) rests on the side nearest the foot's height, the foot nudged off the edge; a
+//     planted foot a few cm off its ground is put on it. Otherwise the heights follow their
+//     targets through critically damped springs, the body's slower than the feet's. A hole under
+//     a foot keeps its last height.
 //  5. Foot locking. While the clip plants a foot (foot_contact.hpp: heel or ball), that part keeps
 //     the ground position it had when it was planted (its height stays the clip's over the ground
 //     under it, 4.), through root steering, blends and the

@@ -421,7 +421,8 @@ TEST(PoseStage, OnACaptureOfAnotherUnitAndRootFeetStandOnASlope) {
     if (!(stage.contact() & (kLeftHeel | kLeftBall | kRightHeel | kRightBall))) return;
     ++planted_frames;
     shown_worst = std::max(shown_worst, planted_ground_error(stage.shown(), stage.animated(), stage.contact(), slope));
-    played_worst = std::max(played_worst, planted_ground_error(stage.animated(), stage.animated(), stage.contact(), slope));
+    played_worst =
+        std::max(played_worst, planted_ground_error(stage.animated(), stage.animated(), stage.contact(), slope));
   });
   EXPECT_GT(planted_frames, 10);
   EXPECT_GT(played_worst, 0.2f) << "the clip's own feet sink into the slope (58 cm at 3 m)";
@@ -442,7 +443,8 @@ TEST(PoseStage, OnACaptureOfAnotherUnitAndRootFeetLandOnStairTreads) {
   ASSERT_GE(walking, 0);
   Terrain stairs;  // from z = 0.5 m on, each tread a block on the one before
   for (int i = 0; i < 12; ++i)
-    stairs.steps.push_back({"tread", vec3(-5.0f, 0.0f, 0.5f + 0.3f * static_cast<float>(i)), vec3(5.0f, 0.12f * static_cast<float>(i + 1), 20.0f)});
+    stairs.steps.push_back({"tread", vec3(-5.0f, 0.0f, 0.5f + 0.3f * static_cast<float>(i)),
+                            vec3(5.0f, 0.12f * static_cast<float>(i + 1), 20.0f)});
   PoseStage stage(lib);
   stage.set_ground(&stairs);
   float shown_worst = 0.0f, played_worst = 0.0f, highest = 0.0f;
