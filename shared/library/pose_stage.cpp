@@ -17,6 +17,7 @@ constexpr float kPastEdge_m = 0.015f;      // how far past a step's edge a nudge
 constexpr vec2 kPatchDirections[] = {vec2(1.0f, 0.0f), vec2(-1.0f, 0.0f), vec2(0.0f, 1.0f),
                                      vec2(0.0f, -1.0f)};
 constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where it was expected
+constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to its pose's height is down
 
 // 1 at the start, 0 at the end, flat at both (smoothstep of the time left).
 float decay(float left_s, float total_s) {
@@ -317,8 +318,16 @@ void PoseStage::inertialize(float dt_s) {
   // Each joint's offset is its own: the legs get their bones' lengths back by IK to where the
   // offset ankles are (measured: without it a fallback on the Bandai capture showed a shin 7 cm
   // short for a few frames).
-  if (library_.num_joints() > kCanonRightToeEnd)
-    for (int foot = 0; foot < 2; ++foot) reach(foot, vec3(0.0f));
+  if (library_.num_joints() <= kCanonRightToeEnd) return;
+  for (int foot = 0; foot < 2; ++foot) {
+    reach(foot, vec3(0.0f));
+    // A foot the new pose plants but the decaying offset still holds in the air (a fallback to
+    // idle in mid-stride) is landing, not planted: it is neither held nor counted as on the ground
+    // until it is down.
+    const auto ball = static_cast<size_t>(foot_ball_joint(foot)), heel = static_cast<size_t>(foot_heel_joint(foot));
+    if (std::max(shown_[ball].y - animated_[ball].y, shown_[heel].y - animated_[heel].y) > kLanded_m)
+      contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
+  }
 }
 
 void PoseStage::lock_foot(int foot, float dt_s) {

@@ -5,7 +5,9 @@
 //  1. Inertialization. When the sampled pose jumps (any joint moves further in one frame than the
 //     library's clips ever move one: a fallback to idle, a snapshot correction, a reconnect), the
 //     jump becomes an offset from the new pose that decays to zero over `inertialize_s` (smoothstep,
-//     so it starts flat and lands flat) instead of a pop.
+//     so it starts flat and lands flat) instead of a pop. A foot the new pose plants but the
+//     offset still holds in the air (a fallback in mid-stride) is landing, not planted, until it
+//     is within 1 cm of its pose's height.
 //  2. Turn easing. Root steering turns the whole body about the root at up to 540 deg/s, starting
 //     and stopping at full speed: a hand 0.4 m from the root would jump 0.13 m a frame. The
 //     steering's part of the turn (the segment's start rotated while the segment plays on) is
@@ -89,7 +91,8 @@ class PoseStage {
   /// The pose as sampled this frame, before the stage.
   std::span<const vec3> animated() const { return animated_; }
   std::span<const vec3> shown() const { return shown_; }
-  /// This frame's FootContactBit byte: the clip frame's, less the feet the stage is stepping.
+  /// This frame's FootContactBit byte: the clip frame's, less the feet the stage is stepping and
+  /// those an inertialized jump still holds in the air (landing).
   uint8_t contact() const { return contact_; }
   /// Frames whose sampled pose jumped and were inertialized, since construction.
   int discontinuities() const { return discontinuities_; }

@@ -174,6 +174,45 @@ TEST(PoseStage, AJumpIsInertializedNotShown) {
   EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
 }
 
+// A jump from mid-stride (a foot in the air) to a stand that plants both feet, as a fallback to
+// idle is: the decaying offset brings the raised foot down over inertialize_s, and while it is
+// still up it is landing, not planted (not held, not counted on the ground); once down it is.
+TEST(PoseStage, AFootAnInertializedJumpHoldsInTheAirIsNotPlantedUntilDown) {
+  const MotionLibrary& lib = library();
+  const int walk = lib.graph.find_segment("walk_l"), idle = lib.graph.find_segment("idle");
+  ASSERT_GE(walk, 0);
+  ASSERT_GE(idle, 0);
+  PoseStage stage(lib);
+  PlaybackState s{walk, 0, Placement{vec2(0.0f), 0.0f}, -1};
+  stage.update(s, 0.0f);
+  int raised = -1;  // a frame of the step with one foot well off the floor
+  for (int f = 1; f < lib.graph.segments[walk].num_frames() && raised < 0; ++f) {
+    s.frame = f;
+    stage.update(s, 1.0f / 30.0f);
+    for (int foot = 0; foot < 2; ++foot)
+      if (stage.animated()[static_cast<size_t>(foot_ball_joint(foot))].y > 0.08f) raised = foot;
+  }
+  ASSERT_GE(raised, 0);
+  const uint8_t raised_bits = foot_ball_bit(raised) | foot_heel_bit(raised);
+  s = PlaybackState{idle, 0, Placement{vec2(0.6f, 0.0f), 0.0f}, -1};  // unblended, 60 cm on
+  stage.update(s, 1.0f / 30.0f);
+  ASSERT_EQ(stage.discontinuities(), 1);
+  ASSERT_EQ(lib.foot_contact_at(lib.graph.segments[idle].clip, lib.graph.segments[idle].first_frame) & raised_bits,
+            raised_bits) << "the stand plants it";
+  EXPECT_EQ(stage.contact() & raised_bits, 0) << "shown in the air: landing";
+  bool landed = false;
+  for (int f = 1; f < 10; ++f) {
+    s.frame = f;
+    const std::span<const vec3> shown = stage.update(s, 1.0f / 30.0f);
+    const auto ball = static_cast<size_t>(foot_ball_joint(raised));
+    if (stage.contact() & raised_bits) {
+      landed = true;
+      EXPECT_LT(shown[ball].y - stage.animated()[ball].y, 0.011f) << "planted only once down";
+    }
+  }
+  EXPECT_TRUE(landed);
+}
+
 // A jump into another pose (an idle stand to mid-stride somewhere else, as a correction or a
 // fallback may be) gives every joint its own decaying offset; the legs keep their bones' lengths
 // all the while (without solving them again a shin was shown 7 cm short).
