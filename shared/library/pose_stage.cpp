@@ -79,6 +79,7 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   const int clip_frame = std::min(seg.first_frame + state.frame, library_.clips[seg.clip].num_frames - 1);
   contact_ = library_.foot_contact.empty() ? 0 : library_.foot_contact_at(seg.clip, clip_frame);
   shown_ = animated_;
+  foothold_nudge_[0] = foothold_nudge_[1] = vec2(0.0f);  // set by adapt_to_ground, if it runs
   if (config_.inertialization) inertialize(dt_s);
   if (config_.turn_easing) ease_turn(state, dt_s);
   if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
@@ -218,7 +219,6 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
     float gh = 0.0f, gb = 0.0f;
     const bool has_heel = height_at(foot, heel, gh), has_ball = height_at(foot, ball, gb);
     target[foot] = foot_y_[foot];  // over a hole: where it was
-    foothold_nudge_[foot] = vec2(0.0f);
     planted_now[foot] = has_ground_ && ((heel_down && has_heel) || (ball_down && has_ball));
     // Across a stair's edge (the ball's ground higher than the foot can pitch to, below) the foot
     // rests on the step with its heel hanging, as a foot on a stair does; otherwise on its heel.

@@ -9,6 +9,7 @@
 #include "world/data_paths.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -18,19 +19,26 @@ namespace {
 
 using test::RawClient;
 
-/// A 3 x 3 m room (walls 0.2 m thick inside the bounds), its spawn 0.25 m from the west wall.
-std::filesystem::path write_small_room() {
-  const std::filesystem::path path = test::scratch_dir() / "small_room.json";
-  std::ofstream(path) << R"({"format": "foresight-scene", "version": 1, "name": "small-room",
-    "bounds": {"min": [0, 0], "max": [3.4, 3.4]},
-    "boxes": [
-      {"kind": "wall", "name": "west", "min": [0, 0, 0], "max": [0.2, 2.5, 3.4]},
-      {"kind": "wall", "name": "east", "min": [3.2, 0, 0], "max": [3.4, 2.5, 3.4]},
-      {"kind": "wall", "name": "south", "min": [0.2, 0, 0], "max": [3.2, 2.5, 0.2]},
-      {"kind": "wall", "name": "north", "min": [0.2, 0, 3.2], "max": [3.2, 2.5, 3.4]}],
-    "spawns": [{"name": "by-the-wall", "pos": [0.45, 1.7], "heading_deg": 0}]})";
+/// A walled room `inside_x` by `inside_z` m (walls 0.2 m thick inside the bounds, 2.5 m high), one
+/// spawn at (spawn_x, spawn_z) facing +Z, written to the scratch folder as `name`.json.
+std::filesystem::path write_walled_room(const std::string& name, double inside_x, double inside_z, double spawn_x,
+                                        double spawn_z) {
+  const double x = inside_x + 0.4, z = inside_z + 0.4;
+  const std::filesystem::path path = test::scratch_dir() / (name + ".json");
+  std::ofstream(path) << nlohmann::json{
+      {"format", "foresight-scene"}, {"version", 1}, {"name", name},
+      {"bounds", {{"min", {0, 0}}, {"max", {x, z}}}},
+      {"boxes",
+       {{{"kind", "wall"}, {"name", "west"}, {"min", {0, 0, 0}}, {"max", {0.2, 2.5, z}}},
+        {{"kind", "wall"}, {"name", "east"}, {"min", {x - 0.2, 0, 0}}, {"max", {x, 2.5, z}}},
+        {{"kind", "wall"}, {"name", "south"}, {"min", {0.2, 0, 0}}, {"max", {x - 0.2, 2.5, 0.2}}},
+        {{"kind", "wall"}, {"name", "north"}, {"min", {0.2, 0, z - 0.2}}, {"max", {x - 0.2, 2.5, z}}}}},
+      {"spawns", {{{"name", "spawn"}, {"pos", {spawn_x, spawn_z}}, {"heading_deg", 0}}}}};
   return path;
 }
+
+/// A 3 x 3 m room, its spawn 0.25 m from the west wall.
+std::filesystem::path write_small_room() { return write_walled_room("small-room", 3.0, 3.0, 0.45, 1.7); }
 
 TEST(Spawn, ABodyThatDoesNotFitSaysWhatIsInTheWayAndByHowMuch) {
   Scene scene;
@@ -87,16 +95,7 @@ TEST(Spawn, JoinsFindTheFreePlacesNearASpawnThatDoesNotFitThenAreRefusedAsNoSpaw
 /// A corridor 1 m wide and 4.6 m long (a level drawn by someone else: narrower than our scenes'
 /// passages), its spawn near the south end.
 std::filesystem::path write_narrow_corridor() {
-  const std::filesystem::path path = test::scratch_dir() / "narrow_corridor.json";
-  std::ofstream(path) << R"({"format": "foresight-scene", "version": 1, "name": "narrow-corridor",
-    "bounds": {"min": [0, 0], "max": [1.4, 5.0]},
-    "boxes": [
-      {"kind": "wall", "name": "west", "min": [0, 0, 0], "max": [0.2, 2.5, 5.0]},
-      {"kind": "wall", "name": "east", "min": [1.2, 0, 0], "max": [1.4, 2.5, 5.0]},
-      {"kind": "wall", "name": "south", "min": [0.2, 0, 0], "max": [1.2, 2.5, 0.2]},
-      {"kind": "wall", "name": "north", "min": [0.2, 0, 4.8], "max": [1.2, 2.5, 5.0]}],
-    "spawns": [{"name": "south-end", "pos": [0.7, 0.9], "heading_deg": 0}]})";
-  return path;
+  return write_walled_room("narrow-corridor", 1.0, 4.6, 0.7, 0.9);
 }
 
 // A join passes over the places found taken in the last half second (in a burst of joins they
