@@ -20,6 +20,7 @@
 #include "protocol/protocol.hpp"
 #include "world/data_paths.hpp"
 #include "transport/scene_transfer.hpp"
+#include "world/collision_world.hpp"
 #include "world/scene_load.hpp"
 
 #include <epoxy/gl.h>
@@ -188,6 +189,8 @@ class Session {
   Renderer renderer_;
   DebugOverlay overlay_;  ///< F1; drawn over the scene (also in screenshots).
   Scene scene_;
+  CollisionWorld obstacles_;  ///< scene_'s boxes, for the pose stages' held feet.
+  bool has_obstacles_ = false;
   std::string scene_name_;
   Clock::time_point start_ = Clock::now();
   double last_frame_s_ = 0;
@@ -253,6 +256,10 @@ void Session::show_scene(const std::string& name, uint64_t hash, std::string_vie
   scene_ = std::move(scene);
   scene_name_ = name;
   scene_hash_ = hash;
+  has_obstacles_ = collision_world_build(scene_, obstacles_, error);
+  if (!has_obstacles_)
+    std::fprintf(stderr, "foresight-client: scene '%s' has no collision world (%s): feet are held without it\n",
+                 name.c_str(), error.c_str());
   rig_.set_scene(&scene_);
   renderer_.set_scene(scene_);
 }
@@ -348,6 +355,7 @@ void Session::draw_avatars(double t, vec2& own_pos, float& own_heading, bool& ow
       const float flash = strikes_.target_flash(a.id, t);
       PoseStage& stage = poses_.try_emplace(a.id, library_).first->second;
       stage.set_ground(&scene_.terrain);
+      stage.set_obstacles(has_obstacles_ ? &obstacles_ : nullptr);
       renderer_.add_skeleton(library_.skeleton.parents, stage.update(a.state, dt, a.frame_alpha),
                              glm::mix(colour, kFlashColour, flash));
     }

@@ -16,6 +16,11 @@
 namespace foresight::lab {
 namespace {
 
+// A pop is added (not the clips' own) when the shown acceleration exceeds the played clip
+// frames' own by more than this factor: steering and the stage's springs change a frame's
+// acceleration by a few per cent without adding anything a player would see.
+constexpr float kAddedPopMargin = 1.1f;
+
 constexpr float kBoneSlack_m = 0.01f;
 
 // The largest joint acceleration of one frame of shown positions.
@@ -52,7 +57,7 @@ struct Accumulator {
 
 void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Scene& scene, const GoalPoint& goal,
                  const MotionQualityController& c, const MotionQualityOptions& o, uint64_t seed,
-                 float pop_threshold, Accumulator& acc) {
+                 const LibraryPops& pops, Accumulator& acc) {
   const SpawnPoint& spawn = scene.spawns.front();
   const Placement start{spawn.pos_m, spawn.heading_rad};
   ScriptedPlayerConfig pc;
@@ -70,19 +75,27 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
   sc.foot_locking = sc.inertialization = sc.turn_easing = sc.orientation_warping = sc.ground_adaptation = c.pose_stage;
   PoseStage stage(lib, sc);
   stage.set_ground(&world.terrain);
+  stage.set_obstacles(&world);
   const float dt = static_cast<float>(rc.frame_interval_s);
   const size_t n = static_cast<size_t>(lib.num_joints());
-  std::vector<vec3> before(n), now(n), after(n), animated(n);
+  std::vector<vec3> before(n), now(n), after(n);
   uint8_t contact_before = 0;
   int64_t frame = 0;
+  float own[3] = {0, 0, 0};  // the played clip frames' own accelerations: before, now, after
   while (!run.done()) {
     run.frame(player.frame(run.time_s(), run.avatar().root().pos_m));
-    const std::span<const vec3> shown = stage.update(run.avatar().playback(), frame == 0 ? 0.0f : dt);
+    const PlaybackState& played = run.avatar().playback();
+    const std::span<const vec3> shown = stage.update(played, frame == 0 ? 0.0f : dt);
     const uint8_t contact = stage.contact();
     before.swap(now);
     now.swap(after);
     std::copy(shown.begin(), shown.end(), after.begin());
-    if (frame >= 2 && largest_acceleration(before, now, after) > pop_threshold) ++acc.r.pops;
+    const Segment& seg = lib.graph.segments[played.segment];
+    own[0] = own[1], own[1] = own[2], own[2] = pops.own_at(seg.clip, seg.first_frame + played.frame);
+    if (const float a = frame >= 2 ? largest_acceleration(before, now, after) : 0.0f; a > pops.threshold_m) {
+      ++acc.r.pops;
+      if (a > kAddedPopMargin * std::max({own[0], own[1], own[2]})) ++acc.r.added_pops;
+    }
     if (shown_joints_collide(lib, world, shown)) ++acc.r.shown_collisions;
     if (frame >= 1 && n > kCanonRightToeEnd) {
       for (int foot = 0; foot < 2; ++foot) {
@@ -124,22 +137,36 @@ std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_
           {"look-ahead 1 + steering + pose stage", steered, true}};
 }
 
-float library_pop_threshold(const MotionLibrary& lib) {
-  std::vector<double> largest;
+float LibraryPops::own_at(int clip, int frame) const {
+  const size_t first = clip_first[static_cast<size_t>(clip)];
+  const size_t end = static_cast<size_t>(clip) + 1 < clip_first.size() ? clip_first[static_cast<size_t>(clip) + 1] : own_m.size();
+  return own_m[std::min(first + static_cast<size_t>(std::max(frame, 0)), end - 1)];
+}
+
+LibraryPops library_pops(const MotionLibrary& lib) {
+  LibraryPops pops;
   std::vector<vec3> pos;
   for (const Clip& c : lib.clips) {
+    pops.clip_first.push_back(pops.own_m.size());
     fk_clip_positions(lib.skeleton, c, pos);
     const auto n = static_cast<size_t>(c.num_joints);
-    for (int f = 1; f + 1 < c.num_frames; ++f) {
+    for (int f = 0; f < c.num_frames; ++f) {
+      const int mid = std::clamp(f, 1, std::max(1, c.num_frames - 2));
       float m = 0.0f;
-      for (size_t j = 0; j < n; ++j) {
-        const size_t i = static_cast<size_t>(f) * n + j;
-        m = std::max(m, glm::length(pos[i + n] - 2.0f * pos[i] + pos[i - n]));
-      }
-      largest.push_back(m);
+      if (mid + 1 < c.num_frames)
+        for (size_t j = 0; j < n; ++j) {
+          const size_t i = static_cast<size_t>(mid) * n + j;
+          m = std::max(m, glm::length(pos[i + n] - 2.0f * pos[i] + pos[i - n]));
+        }
+      pops.own_m.push_back(m);
     }
   }
-  return static_cast<float>(percentile(largest, 99.9));
+  // The threshold over the frames that have two neighbours (the ends only repeat them).
+  std::vector<double> inner;
+  for (size_t c = 0; c < lib.clips.size(); ++c)
+    for (int f = 1; f + 1 < lib.clips[c].num_frames; ++f) inner.push_back(pops.own_m[pops.clip_first[c] + static_cast<size_t>(f)]);
+  pops.threshold_m = static_cast<float>(percentile(inner, 99.9));
+  return pops;
 }
 
 std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& library, const Scene& scene,
@@ -158,15 +185,15 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
   if (!probe.plan(library, scene, world, {scene.spawns.front().pos_m, scene.spawns.front().heading_rad},
                   goal.pos_m, ScriptedPlayerConfig{}, error))
     return {};
-  const float pop_threshold = library_pop_threshold(library);
+  const LibraryPops pops = library_pops(library);
   std::vector<MotionQualityResult> results;
   for (const MotionQualityController& c : controllers) {
     Accumulator acc;
     acc.r.controller = c.name;
     acc.r.pose_stage = c.pose_stage;
-    acc.r.pop_threshold_m = pop_threshold;
+    acc.r.pop_threshold_m = pops.threshold_m;
     for (int seed = 1; seed <= options.seeds; ++seed)
-      measure_run(library, world, scene, goal, c, options, static_cast<uint64_t>(seed), pop_threshold, acc);
+      measure_run(library, world, scene, goal, c, options, static_cast<uint64_t>(seed), pops, acc);
     MotionQualityResult& r = acc.r;
     r.contact_samples = static_cast<int64_t>(acc.skate_cm_per_s.size());
     r.foot_skate_cm_per_s_p50 = percentile(acc.skate_cm_per_s, 50);
@@ -177,6 +204,7 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     r.ground_error_cm_p95 = percentile(acc.ground_cm, 95);
     r.ground_error_cm_max = acc.ground_cm.empty() ? 0.0 : *std::max_element(acc.ground_cm.begin(), acc.ground_cm.end());
     r.pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.pops) / r.minutes : 0.0;
+    r.added_pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.added_pops) / r.minutes : 0.0;
     r.response_ms_p50 = percentile(acc.response_ms, 50);
     r.response_ms_p95 = percentile(acc.response_ms, 95);
     r.collisions = std::max(r.played_collisions, r.shown_collisions);
@@ -189,15 +217,16 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
 std::string motion_quality_text(const std::vector<MotionQualityResult>& results) {
   std::string text;
   char line[512];
-  std::snprintf(line, sizeof line, "  %-40s %7s %22s %13s %8s %7s %12s %7s %9s\n", "controller", "goals",
-                "skate cm/s p50/p95/max", "ground p95/max", "pops/min", "limits", "resp p50/p95", "collide",
+  std::snprintf(line, sizeof line, "  %-40s %7s %22s %13s %15s %7s %12s %7s %9s\n", "controller", "goals",
+                "skate cm/s p50/p95/max", "ground p95/max", "pops/min (added)", "limits", "resp p50/p95", "collide",
                 "inertial.");
   text += line;
   for (const MotionQualityResult& r : results) {
     std::snprintf(line, sizeof line,
-                  "  %-40s %3d/%-3d %6.2f / %5.2f / %6.1f %5.2f / %5.1f %8.2f %7lld %5.0f / %5.0f %7lld %9lld\n",
+                  "  %-40s %3d/%-3d %6.2f / %5.2f / %6.1f %5.2f / %5.1f %7.2f (%5.2f) %7lld %5.0f / %5.0f %7lld %9lld\n",
                   r.controller.c_str(), r.goals_reached, r.runs, r.foot_skate_cm_per_s_p50, r.foot_skate_cm_per_s_p95,
                   r.foot_skate_cm_per_s_max, r.ground_error_cm_p95, r.ground_error_cm_max, r.pops_per_min,
+                  r.added_pops_per_min,
                   static_cast<long long>(r.limit_violations), r.response_ms_p50, r.response_ms_p95,
                   static_cast<long long>(r.collisions), static_cast<long long>(r.discontinuities));
     text += line;
@@ -219,6 +248,7 @@ nlohmann::json motion_quality_json(const MotionQualityResult& r) {
           {"ground_error_cm_p95", rounded(r.ground_error_cm_p95, 4)},
           {"ground_error_cm_max", rounded(r.ground_error_cm_max, 4)},
           {"pops_per_min", rounded(r.pops_per_min, 3)},
+          {"added_pops_per_min", rounded(r.added_pops_per_min, 3)},
           {"limit_violations", r.limit_violations},
           {"response_ms_p50", rounded(r.response_ms_p50, 1)},
           {"response_ms_p95", rounded(r.response_ms_p95, 1)},

@@ -10,6 +10,8 @@
 //    clip's own floor, cm (flat scenes: what the stage moved it up or down);
 //  * pops: frames where some joint's acceleration (second difference of its position) exceeds the
 //    library's own within-clip 99.9th percentile of the per-frame largest joint acceleration;
+//    added pops: those of them more than 10 % above what the played clip frames have themselves
+//    (a pop steering, a transition's blend or the stage added; the rest are the clips' own);
 //  * limit violations: frames where a leg bone's length differs by more than 1 cm from the
 //    animated one or a knee bends the other way;
 //  * response (ReplayResult::responses), goals reached, and colliding frames: of the played pose
@@ -58,6 +60,8 @@ struct MotionQualityResult {
   double ground_error_cm_max = 0.0;
   int64_t pops = 0;
   double pops_per_min = 0.0;
+  int64_t added_pops = 0;            ///< Pops the played clip frames do not have (LibraryPops).
+  double added_pops_per_min = 0.0;
   int64_t limit_violations = 0;
   int64_t discontinuities = 0;       ///< Jumps the pose stage inertialized.
   double response_ms_p50 = 0.0;
@@ -66,12 +70,19 @@ struct MotionQualityResult {
   int64_t shown_collisions = 0;      ///< Frames whose shown pose (after the stage) does (shown_joints_collide).
   int64_t collisions = 0;            ///< The larger of the two.
   double goals_reached_share = 0.0;
-  float pop_threshold_m = 0.0f;      ///< library_pop_threshold: the same for every controller.
+  float pop_threshold_m = 0.0f;      ///< LibraryPops::threshold_m: the same for every controller.
 };
 
-/// The per-frame largest joint acceleration (m per frame^2) that 99.9 % of the library's clip
-/// frames stay under.
-float library_pop_threshold(const MotionLibrary& library);
+/// The library's own accelerations: each clip frame's largest joint acceleration (m per frame^2,
+/// the second difference of FK positions, root motion included; a clip's first and last frames
+/// take their neighbour's) and the value 99.9 % of them stay under, the pop threshold.
+struct LibraryPops {
+  float threshold_m = 0.0f;
+  std::vector<float> own_m;         ///< Clip after clip, frame after frame.
+  std::vector<size_t> clip_first;   ///< Per clip: its first frame's index into own_m.
+  float own_at(int clip, int frame) const;
+};
+LibraryPops library_pops(const MotionLibrary& library);
 
 /// Runs every controller; results in the controllers' order. `error` is set (and the result
 /// empty) when the scene has no spawn or no such goal, or the player cannot plan.

@@ -49,16 +49,25 @@ bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& wor
   return false;
 }
 
-bool shown_joints_collide(const MotionLibrary& library, const CollisionWorld& world,
-                          std::span<const vec3> joints_world_m, float tolerance_m) {
-  if (joints_world_m.empty()) return false;
-  const float flesh_m = std::max(library.body_margin_m - tolerance_m, 0.0f);
+BodyHeights body_heights(const MotionLibrary& library, std::span<const vec3> joints_world_m) {
+  if (joints_world_m.empty()) return {};
   float low = joints_world_m[0].y, high = joints_world_m[0].y;
   for (const vec3& p : joints_world_m) low = std::min(low, p.y), high = std::max(high, p.y);
-  // The body's heights as body_volume_from_pose takes them: its lowest joint to the head top.
-  const float y_min = low, y_max = high + library.head_top_margin_m;
+  // As body_volume_from_pose takes them.
+  return {low, high + library.head_top_margin_m};
+}
+
+bool joint_flesh_collides(const MotionLibrary& library, const CollisionWorld& world, vec3 joint_world_m,
+                          BodyHeights heights, float tolerance_m) {
+  const float flesh_m = std::max(library.body_margin_m - tolerance_m, 0.0f);
+  return volume_hits_boxes(world, BodyVolume{ground(joint_world_m), flesh_m, heights.y_min_m, heights.y_max_m});
+}
+
+bool shown_joints_collide(const MotionLibrary& library, const CollisionWorld& world,
+                          std::span<const vec3> joints_world_m, float tolerance_m) {
+  const BodyHeights heights = body_heights(library, joints_world_m);
   for (const vec3& p : joints_world_m)
-    if (volume_hits_boxes(world, BodyVolume{ground(p), flesh_m, y_min, y_max})) return true;
+    if (joint_flesh_collides(library, world, p, heights, tolerance_m)) return true;
   return false;
 }
 

@@ -36,4 +36,15 @@ bool shown_pose_collides(const MotionLibrary& library, const CollisionWorld& wor
 bool shown_joints_collide(const MotionLibrary& library, const CollisionWorld& world,
                           std::span<const vec3> joints_world_m, float tolerance_m = 0.0f);
 
+/// The body's height range shown_joints_collide grows each joint over: its lowest joint to the
+/// head top.
+struct BodyHeights {
+  float y_min_m = 0.0f, y_max_m = 0.0f;
+};
+BodyHeights body_heights(const MotionLibrary& library, std::span<const vec3> joints_world_m);
+/// One joint's part of shown_joints_collide: its flesh disc over `heights` overlaps a box (or
+/// leaves the bounds).
+bool joint_flesh_collides(const MotionLibrary& library, const CollisionWorld& world, vec3 joint_world_m,
+                          BodyHeights heights, float tolerance_m = 0.0f);
+
 }  // namespace foresight

@@ -3,6 +3,7 @@
 #include "anim/canonical_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "library/foot_contact.hpp"
+#include "library/pose_check.hpp"
 #include "math/types.hpp"
 #include "world/terrain.hpp"
 
@@ -58,6 +59,7 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   previous_animated_.resize(n);
   offset_.resize(n);
   landing_.resize(n);
+  unturned_.resize(n);
   rotations_.resize(n);
   turn_share_.resize(n);
   const bool canonical = library.num_joints() == kCanonJointCount;
@@ -106,14 +108,37 @@ void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
   }
   if (!turning) return;
   const vec2 pivot = playback_root(library_, state).pos_m;  // what the steering turns about
-  for (size_t j = 0; j < shown_.size(); ++j) {
-    const float yaw = turn_lag_[0].offset_rad + turn_share_[j] * (turn_lag_[1].offset_rad - turn_lag_[0].offset_rad);
-    if (yaw == 0.0f) continue;
-    vec3& p = shown_[j];
-    const vec2 g = pivot + rotate_ground(ground(p) - pivot, yaw);
-    p.x = g.x;
-    p.z = g.y;
+  std::copy(shown_.begin(), shown_.end(), unturned_.begin());
+  turn_about(pivot, 1.0f);
+  if (obstacles_ == nullptr || !turned_into_obstacle()) return;
+  // The lag would show a joint (a hand swinging behind the turn) in a box the played pose is
+  // clear of: show as much of it as stays clear (bisection), and go on from there.
+  float clear = 0.0f, blocked = 1.0f;
+  for (int i = 0; i < 8; ++i) {
+    const float mid = 0.5f * (clear + blocked);
+    turn_about(pivot, mid);
+    (turned_into_obstacle() ? blocked : clear) = mid;
   }
+  turn_about(pivot, clear);
+  for (TurnLag& lag : turn_lag_) lag.offset_rad *= clear, lag.speed_rad_s *= clear;
+}
+
+void PoseStage::turn_about(vec2 pivot, float share) {
+  for (size_t j = 0; j < shown_.size(); ++j) {
+    const float yaw = share * (turn_lag_[0].offset_rad +
+                               turn_share_[j] * (turn_lag_[1].offset_rad - turn_lag_[0].offset_rad));
+    const vec2 g = pivot + rotate_ground(ground(unturned_[j]) - pivot, yaw);
+    shown_[j] = vec3(g.x, unturned_[j].y, g.y);
+  }
+}
+
+bool PoseStage::turned_into_obstacle() const {
+  const BodyHeights shown = body_heights(library_, shown_), played = body_heights(library_, animated_);
+  for (size_t j = 0; j < shown_.size(); ++j)
+    if (joint_flesh_collides(library_, *obstacles_, shown_[j], shown) &&
+        !joint_flesh_collides(library_, *obstacles_, animated_[j], played))
+      return true;
+  return false;
 }
 
 // The ground under the ball of `foot` where the clip next plants that foot: the first planted

@@ -12,7 +12,9 @@
 //     and stopping at full speed: a hand 0.4 m from the root would jump 0.13 m a frame. The
 //     steering's part of the turn (the segment's start rotated while the segment plays on) is
 //     shown through critically damped springs (3.): the body follows within a few frames, its
-//     turning speed eased in and out.
+//     turning speed eased in and out. With obstacles (set_obstacles), a lag that would show a
+//     joint in a box the played pose is clear of (a hand swinging behind the turn, along a
+//     wall) is cut to the share that stays clear.
 //  3. Orientation warping. The pelvis and legs follow the root's turn more closely than the upper
 //     body (two springs: `lower_turn_stiffness` for them, `turn_stiffness` from the chest up, the
 //     spine blending a third and two thirds of the way), so the feet step where the root goes
@@ -53,6 +55,8 @@
 
 namespace foresight {
 
+struct CollisionWorld;
+
 struct PoseStageConfig {
   bool foot_locking = true;
   bool inertialization = true;
@@ -87,6 +91,9 @@ class PoseStage {
   /// The ground the feet are adapted to (4. above); nullptr (the default): the clips' own flat
   /// floor, as authored. The terrain must outlive the stage or the next call.
   void set_ground(const Terrain* terrain) { ground_ = terrain; }
+  /// The boxes the eased turn must not show a joint in (2. above); nullptr (the default): none.
+  /// Must outlive the stage or the next call.
+  void set_obstacles(const CollisionWorld* world) { obstacles_ = world; }
 
   /// The pose as sampled this frame, before the stage.
   std::span<const vec3> animated() const { return animated_; }
@@ -112,6 +119,8 @@ class PoseStage {
   };
   void inertialize(float dt_s);
   void ease_turn(const PlaybackState& state, float dt_s);
+  void turn_about(vec2 pivot, float share);
+  bool turned_into_obstacle() const;
   void adapt_to_ground(const PlaybackState& state, float frame_alpha, float dt_s);
   bool landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s);
   bool lowest_ground_near(vec2 p, float& height) const;
@@ -125,6 +134,7 @@ class PoseStage {
   float jump_m_ = 0.5f;
   Pose pose_;
   std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_, landing_;
+  std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
   std::vector<quat> rotations_;
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
@@ -139,6 +149,7 @@ class PoseStage {
   int discontinuities_ = 0;
   FootLock feet_[2];
   const Terrain* ground_ = nullptr;
+  const CollisionWorld* obstacles_ = nullptr;
   bool has_ground_ = false;  ///< The ground heights below have been taken.
   float body_y_ = 0.0f, body_vy_ = 0.0f;        ///< The body's shown height offset and its rate.
   float foot_y_[2] = {0, 0}, foot_vy_[2] = {0, 0};  ///< Each foot's, before the body's.

@@ -41,6 +41,9 @@ TEST(MotionQuality, ThePoseStageKeepsSteeredFeetPlantedAndChangesNothingElse) {
   EXPECT_GT(raw.foot_skate_cm_per_s_p95, 10.0) << "steering slides planted feet";
   EXPECT_LT(staged.foot_skate_cm_per_s_p95, 2.0) << "the stage keeps them planted";
   EXPECT_LT(staged.pops, raw.pops) << "and eases the turn";
+  EXPECT_GT(raw.added_pops, raw.pops / 2) << "raw steering's pops are its own, not the clips'";
+  EXPECT_LT(staged.added_pops, raw.added_pops / 4);
+  for (const MotionQualityResult& x : r) EXPECT_LE(x.added_pops, x.pops);
   EXPECT_EQ(raw.limit_violations, 0) << "played poses never violate";
   EXPECT_LE(staged.limit_violations, 3);
   EXPECT_EQ(staged.collisions, 0);
@@ -103,9 +106,24 @@ TEST(MotionQuality, UpTheStairsEveryPlantedFootIsOnTheGroundWhereverTheEdgesAre)
 
 TEST(MotionQuality, TheLibrarysPopThresholdIsItsOwnClipsNinetyNinePointNinthPercentile) {
   const MotionLibrary lib = motion_library_default();
-  const float threshold = library_pop_threshold(lib);
-  EXPECT_GT(threshold, 0.01f);   // above walking's few mm per frame^2
-  EXPECT_LT(threshold, 0.4f);    // below NoJointPops' per-frame bound x 2
+  const LibraryPops pops = library_pops(lib);
+  EXPECT_GT(pops.threshold_m, 0.01f);   // above walking's few mm per frame^2
+  EXPECT_LT(pops.threshold_m, 0.4f);    // below NoJointPops' per-frame bound x 2
+  ASSERT_EQ(pops.clip_first.size(), lib.clips.size());
+  int64_t inner = 0, over = 0;
+  for (size_t c = 0; c < lib.clips.size(); ++c) {
+    const int frames = lib.clips[c].num_frames;
+    ASSERT_GE(frames, 3);
+    const int clip = static_cast<int>(c);
+    // A clip's ends have one neighbour only: they take the next inner frame's acceleration.
+    EXPECT_EQ(pops.own_at(clip, 0), pops.own_at(clip, 1));
+    EXPECT_EQ(pops.own_at(clip, frames - 1), pops.own_at(clip, frames - 2));
+    EXPECT_EQ(pops.own_at(clip, frames + 5), pops.own_at(clip, frames - 1)) << "past the end: the last frame";
+    for (int f = 1; f + 1 < frames; ++f, ++inner) over += pops.own_at(clip, f) > pops.threshold_m;
+  }
+  // By definition about 0.1 % of the clips' inner frames are over it (ties and rounding aside).
+  EXPECT_GT(over, 0);
+  EXPECT_LE(over, inner / 500);
 }
 
 }  // namespace

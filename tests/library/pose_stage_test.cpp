@@ -3,9 +3,11 @@
 #include "anim/canonical_skeleton.hpp"
 #include "library/foot_contact.hpp"
 #include "library_build/library_source.hpp"
+#include "library/pose_check.hpp"
 #include "library/pose_stage.hpp"
 #include "library_checks.hpp"
 #include "foreign_capture.hpp"
+#include "world/collision_world.hpp"
 #include "world/terrain.hpp"
 
 #include <gtest/gtest.h>
@@ -265,6 +267,45 @@ TEST(PoseStage, ThePelvisFollowsTheTurnBeforeTheShoulders) {
   w.play_to(15);
   EXPECT_LT(w.lag(kCanonLeftUpLeg, kCanonRightUpLeg), 0.02f);
   EXPECT_LT(w.lag(kCanonLeftArm, kCanonRightArm), 0.02f);
+}
+
+// Along a wall: the turn's lag would show a joint (the one it moves farthest, a hand) inside a post
+// the played pose is clear of, which the bench counts as a colliding frame. Given the scene's
+// boxes, the stage shows only as much of the lag as stays clear, eases the rest, and catches up.
+TEST(PoseStage, TheEasedTurnShowsNoJointInABoxThePlayedPoseClears) {
+  const MotionLibrary& lib = library();
+  ASSERT_GE(lib.graph.find_segment("walk_l"), 0);
+  SteeredWalk free(lib);
+  free.turn();
+  const std::span<const vec3> lagged = free.stage.shown(), played = free.stage.animated();
+  size_t far = 0;
+  for (size_t j = 0; j < lagged.size(); ++j)
+    if (glm::length(ground(lagged[j]) - ground(played[j])) > glm::length(ground(lagged[far]) - ground(played[far]))) far = j;
+  const vec2 lag = ground(lagged[far]) - ground(played[far]);
+  ASSERT_GT(glm::length(lag), 0.04f);
+  const vec2 post = ground(lagged[far]) + 0.05f * glm::normalize(lag);  // 1 cm square, 2 m high
+  Scene scene;
+  scene.bounds = {vec2(-20.0f), vec2(20.0f)};
+  scene.boxes.push_back({"post", BoxKind::kWall, vec3(post.x - 0.005f, 0.0f, post.y - 0.005f),
+                         vec3(post.x + 0.005f, 2.0f, post.y + 0.005f)});
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_TRUE(shown_joints_collide(lib, world, lagged)) << "without the boxes the lag is shown in the post";
+  ASSERT_FALSE(shown_joints_collide(lib, world, played)) << "the played pose clears it";
+
+  SteeredWalk walled(lib);
+  walled.stage.set_obstacles(&world);
+  walled.turn();
+  EXPECT_FALSE(shown_joints_collide(lib, world, walled.stage.shown()));
+  EXPECT_GT(walled.lag(kCanonLeftUpLeg, kCanonRightUpLeg), 0.02f) << "the rest of the turn is still eased";
+  for (int frame = 2; frame <= 15; ++frame) {
+    walled.play_to(frame);
+    if (shown_joints_collide(lib, world, walled.stage.animated())) continue;  // the clip's own
+    EXPECT_FALSE(shown_joints_collide(lib, world, walled.stage.shown())) << "frame " << frame;
+  }
+  EXPECT_LT(walled.lag(kCanonLeftUpLeg, kCanonRightUpLeg), 0.02f) << "caught up";
+  EXPECT_LT(walled.lag(kCanonLeftArm, kCanonRightArm), 0.02f);
 }
 
 // Ground adaptation: an idle avatar with its left foot on a 12 cm step, then on a 20 % slope.
