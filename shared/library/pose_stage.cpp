@@ -380,9 +380,11 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     vec3 offset = f.at - here;
     offset.y = 0.0f;
     if (glm::length(offset) > config_.max_lock_offset_m) {
-      // The body has turned or moved too far over the planted foot: it steps to where the clip has it.
+      // The body has turned or moved too far over the planted foot: it steps to where the clip
+      // has it, lifted from this frame on (the leg may not even reach the hold).
       f = FootLock{false, joint, here, offset, config_.release_s, true};
       reach(foot, offset);
+      contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }
     f.release = offset;
