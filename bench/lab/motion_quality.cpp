@@ -7,6 +7,7 @@
 #include "library/foot_contact.hpp"
 #include "library/pose_check.hpp"
 #include "scripted/replay.hpp"
+#include "scripted/response_meter.hpp"
 #include "scripted/scripted_player.hpp"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ bool leg_violates(std::span<const vec3> shown, std::span<const vec3> animated, s
 }
 
 struct Accumulator {
-  std::vector<double> skate_cm_per_s, ground_cm, response_ms;
+  std::vector<double> skate_cm_per_s, ground_cm, response_ms, shown_response_ms;
   MotionQualityResult r;
 };
 
@@ -82,10 +83,14 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
   uint8_t contact_before = 0;
   int64_t frame = 0;
   float own[3] = {0, 0, 0};  // the played clip frames' own accelerations: before, now, after
+  ResponseMeter shown_response(rc.frame_interval_s);  // of the shown pelvis
   while (!run.done()) {
-    run.frame(player.frame(run.time_s(), run.avatar().root().pos_m));
+    const double t_s = run.time_s();
+    run.frame(player.frame(t_s, run.avatar().root().pos_m));
     const PlaybackState& played = run.avatar().playback();
     const std::span<const vec3> shown = stage.update(played, frame == 0 ? 0.0f : dt);
+    if (shown_response.frame(t_s, control_world_direction(run.avatar().input()), ground(shown[0]), played.segment))
+      acc.shown_response_ms.push_back(shown_response.last().ms);
     const uint8_t contact = stage.contact();
     before.swap(now);
     now.swap(after);
@@ -207,6 +212,8 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     r.added_pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.added_pops) / r.minutes : 0.0;
     r.response_ms_p50 = percentile(acc.response_ms, 50);
     r.response_ms_p95 = percentile(acc.response_ms, 95);
+    r.shown_response_ms_p50 = percentile(acc.shown_response_ms, 50);
+    r.shown_response_ms_p95 = percentile(acc.shown_response_ms, 95);
     r.collisions = std::max(r.played_collisions, r.shown_collisions);
     r.goals_reached_share = r.runs > 0 ? static_cast<double>(r.goals_reached) / r.runs : 0.0;
     results.push_back(r);
@@ -217,17 +224,19 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
 std::string motion_quality_text(const std::vector<MotionQualityResult>& results) {
   std::string text;
   char line[512];
-  std::snprintf(line, sizeof line, "  %-40s %7s %22s %13s %15s %7s %12s %7s %9s\n", "controller", "goals",
-                "skate cm/s p50/p95/max", "ground p95/max", "pops/min (added)", "limits", "resp p50/p95", "collide",
+  std::snprintf(line, sizeof line, "  %-40s %7s %22s %13s %15s %7s %12s %12s %7s %9s\n", "controller", "goals",
+                "skate cm/s p50/p95/max", "ground p95/max", "pops/min (added)", "limits", "resp p50/p95",
+                "shown resp", "collide",
                 "inertial.");
   text += line;
   for (const MotionQualityResult& r : results) {
     std::snprintf(line, sizeof line,
-                  "  %-40s %3d/%-3d %6.2f / %5.2f / %6.1f %5.2f / %5.1f %7.2f (%5.2f) %7lld %5.0f / %5.0f %7lld %9lld\n",
+                  "  %-40s %3d/%-3d %6.2f / %5.2f / %6.1f %5.2f / %5.1f %7.2f (%5.2f) %7lld %5.0f / %5.0f %5.0f / %5.0f %7lld %9lld\n",
                   r.controller.c_str(), r.goals_reached, r.runs, r.foot_skate_cm_per_s_p50, r.foot_skate_cm_per_s_p95,
                   r.foot_skate_cm_per_s_max, r.ground_error_cm_p95, r.ground_error_cm_max, r.pops_per_min,
                   r.added_pops_per_min,
                   static_cast<long long>(r.limit_violations), r.response_ms_p50, r.response_ms_p95,
+                  r.shown_response_ms_p50, r.shown_response_ms_p95,
                   static_cast<long long>(r.collisions), static_cast<long long>(r.discontinuities));
     text += line;
   }
@@ -252,6 +261,8 @@ nlohmann::json motion_quality_json(const MotionQualityResult& r) {
           {"limit_violations", r.limit_violations},
           {"response_ms_p50", rounded(r.response_ms_p50, 1)},
           {"response_ms_p95", rounded(r.response_ms_p95, 1)},
+          {"shown_response_ms_p50", rounded(r.shown_response_ms_p50, 1)},
+          {"shown_response_ms_p95", rounded(r.shown_response_ms_p95, 1)},
           {"collisions", r.collisions},
           {"goals_reached_share", rounded(r.goals_reached_share, 4)}};
 }

@@ -14,9 +14,12 @@
 //    (a pop steering, a transition's blend or the stage added; the rest are the clips' own);
 //  * limit violations: frames where a leg bone's length differs by more than 1 cm from the
 //    animated one or a knee bends the other way;
-//  * response (ReplayResult::responses), goals reached, and colliding frames: of the played pose
-//    (the replay's FK check) and of the shown one (shown_joints_collide: the stage moves feet and
-//    lags the body's turn), the larger count.
+//  * response (ReplayResult::responses: of the root, which the look-ahead steers), and shown
+//    response: the same measure (ResponseMeter) of the shown pose's pelvis, which is what the
+//    player sees answer (the stage eases the body's turn after the root's);
+//  * goals reached, and colliding frames: of the played pose (the replay's FK check) and of the
+//    shown one (shown_joints_collide: the stage moves feet and lags the body's turn), the larger
+//    count.
 #include "library/pose_stage.hpp"
 #include "lookahead/motion_tree.hpp"
 #include "world/collision_world.hpp"
@@ -66,6 +69,8 @@ struct MotionQualityResult {
   int64_t discontinuities = 0;       ///< Jumps the pose stage inertialized.
   double response_ms_p50 = 0.0;
   double response_ms_p95 = 0.0;
+  double shown_response_ms_p50 = 0.0;  ///< Of the shown pelvis (ResponseMeter).
+  double shown_response_ms_p95 = 0.0;
   int64_t played_collisions = 0;     ///< Frames whose played pose overlaps the scene (ReplayRun's FK check).
   int64_t shown_collisions = 0;      ///< Frames whose shown pose (after the stage) does (shown_joints_collide).
   int64_t collisions = 0;            ///< The larger of the two.

@@ -8,19 +8,6 @@
 #include <cmath>
 
 namespace foresight {
-namespace {
-
-constexpr float kMovingSpeed_mps = 0.2f;   // slower counts as standing (sway, idle shuffle)
-constexpr float kFollowAngle_deg = 30.0f;  // "within 30 deg" of the paper-free responsiveness metric
-constexpr double kVelocityWindow_s = 0.2;
-
-float angle_between_deg(vec2 a, vec2 b) {
-  const float la = glm::length(a), lb = glm::length(b);
-  if (la <= 0.0f || lb <= 0.0f) return 0.0f;
-  return degrees(std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f)));
-}
-
-}  // namespace
 
 ReplayRun::ReplayRun(const MotionLibrary& library, const CollisionWorld& world, const Placement& start,
                      vec2 goal_pos_m, float goal_radius_m, const ReplayConfig& config)
@@ -52,7 +39,7 @@ ReplayRun::ReplayRun(const MotionLibrary& library, const CollisionWorld& world, 
   if (!(fps_ > 0.0)) fps_ = 30.0;
   avatar_.emplace(library, world, config_.tree, segment, start);
   avatar_->tree().set_statistics(config_.statistics);
-  velocity_window_ = std::max(1, static_cast<int>(std::lround(kVelocityWindow_s / config_.frame_interval_s)));
+  response_.emplace(config_.frame_interval_s);
   const double frames = std::max(1.0, std::ceil(config_.max_seconds / config_.frame_interval_s) + 1.0);
   result_.path.reserve(static_cast<size_t>(std::min(frames, 1.0e6)));
   result_.segments.reserve(result_.path.capacity());
@@ -85,7 +72,8 @@ void ReplayRun::frame(const ControlInput& input) {
   const vec2 pos = avatar_->root().pos_m;
   result_.path.push_back(pos);
   result_.segments.push_back(avatar_->playback().segment);
-  measure(t);
+  if (response_->frame(t, control_world_direction(avatar_->input()), pos, avatar_->playback().segment))
+    result_.responses.push_back(response_->last());
   count_stalls(t, pos, glm::length(control_world_direction(input)) > 0.0f);
   ++frame_;
   result_.seconds = static_cast<double>(frame_) * config_.frame_interval_s;
@@ -120,49 +108,12 @@ void ReplayRun::check_shown_pose() {
     ++result_.colliding_frames;
 }
 
-void ReplayRun::measure(double t_s) {
-  const vec2 command = control_world_direction(avatar_->input());
-  const bool has_command = glm::length(command) > 1e-4f;
-  const size_t n = result_.path.size();
-  vec2 velocity(0.0f);
-  if (n > static_cast<size_t>(velocity_window_)) {
-    const double window_s = velocity_window_ * config_.frame_interval_s;
-    velocity = (result_.path[n - 1] - result_.path[n - 1 - static_cast<size_t>(velocity_window_)]) /
-               static_cast<float>(window_s);
-  }
-  const bool moving = glm::length(velocity) > kMovingSpeed_mps;
-
-  if (!has_command) {
-    pending_response_ = false;
-    reference_dir_ = vec2(0.0f);
-    return;
-  }
-  if (moving) {
-    angle_sum_deg_ += angle_between_deg(command, velocity);
-    ++angle_frames_;
-  }
-  if (reference_dir_ == vec2(0.0f) || angle_between_deg(command, reference_dir_) > kFollowAngle_deg) {
-    pending_ = Response{};
-    pending_.at_s = t_s;
-    pending_.change_deg = reference_dir_ == vec2(0.0f) ? 180.0f : angle_between_deg(command, reference_dir_);
-    pending_.segment_at_change = avatar_->playback().segment;
-    reference_dir_ = command;
-    pending_response_ = true;
-  }
-  if (pending_response_ && moving && angle_between_deg(command, velocity) <= kFollowAngle_deg) {
-    pending_.ms = (t_s - pending_.at_s) * 1000.0;
-    pending_.segment_at_response = avatar_->playback().segment;
-    result_.responses.push_back(pending_);
-    pending_response_ = false;
-  }
-}
-
 ReplayResult ReplayRun::finish() {
   if (avatar_) {
     result_.fallbacks = avatar_->fallbacks();
     result_.recoveries = avatar_->recoveries();
     if (!result_.path.empty()) result_.avg_tree_size = tree_size_sum_ / static_cast<double>(result_.path.size());
-    if (angle_frames_ > 0) result_.mean_command_angle_deg = angle_sum_deg_ / static_cast<double>(angle_frames_);
+    result_.mean_command_angle_deg = response_->mean_command_angle_deg();
   }
   return std::move(result_);
 }

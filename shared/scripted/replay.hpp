@@ -18,6 +18,7 @@
 #include "library/pose_check.hpp"
 #include "lookahead/lookahead_avatar.hpp"
 #include "scripted/recording.hpp"
+#include "scripted/response_meter.hpp"
 #include "lookahead/transition_statistics.hpp"
 #include "world/collision_world.hpp"
 
@@ -39,16 +40,6 @@ struct ReplayConfig {
   double grace_after_end_s = 10;
   bool stop_at_goal = true;
   TransitionStatistics statistics;  ///< For strategies 3/4 (learn_statistics); may be empty.
-};
-
-/// One command-direction change the avatar followed (ReplayResult::responses).
-struct Response {
-  double at_s = 0;          ///< Display time of the change.
-  double ms = 0;            ///< Until the velocity was within 30 deg of the command.
-  float change_deg = 0;     ///< Angle from the command before; 180 for a command after a stop.
-  int segment_at_change = -1;    ///< Segment playing when the command changed.
-  int segment_at_response = -1;  ///< Segment playing when the avatar followed.
-  bool operator==(const Response&) const = default;
 };
 
 inline constexpr double kStallSeconds = 3.0;
@@ -106,7 +97,6 @@ class ReplayRun {
 
  private:
   void check_shown_pose();
-  void measure(double t_s);
   void count_stalls(double t_s, vec2 pos, bool key_held);
 
   const MotionLibrary& library_;
@@ -125,12 +115,7 @@ class ReplayRun {
   bool stall_watch_ = false;  ///< A key is held: stall_from_ is where progress is measured from.
   vec2 stall_from_{0.0f};
   double stall_since_s_ = 0;
-  double angle_sum_deg_ = 0;
-  int64_t angle_frames_ = 0;
-  int velocity_window_ = 6;  // display frames in ~0.2 s
-  vec2 reference_dir_{0.0f};
-  bool pending_response_ = false;
-  Response pending_;
+  std::optional<ResponseMeter> response_;  ///< Of the root (set up once the config checks out).
   // Scratch for the FK re-check (sized once).
   PoseCheckScratch check_scratch_;
 };
