@@ -144,7 +144,8 @@ bool PoseStage::turned_into_obstacle() const {
 // The ground under the ball of `foot` where the clip next plants that foot: the first planted
 // frame of the playing segment after this one, or the segment's end (where its successor starts)
 // if the foot lands later. Steering may still turn the segment; this is asked again every frame.
-bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s) {
+bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s,
+                               vec2& at) {
   const Segment& seg = library_.graph.segments[state.segment];
   const int last_clip_frame = library_.clips[seg.clip].num_frames - 1;
   const uint8_t bits = foot_ball_bit(foot) | foot_heel_bit(foot);
@@ -166,6 +167,7 @@ bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, in
   const bool on_ball =
       lands == foot_ball_bit(foot) || (has_ball && has_heel && gb - gh > 0.5f * glm::length(ball - heel));
   height = on_ball || !has_heel ? gb : gh;
+  at = ground(on_ball || !has_heel ? ball : heel);
   return on_ball || !has_heel ? has_ball : has_heel;
 }
 
@@ -263,12 +265,31 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
       // the ground under its front (a step down waits for the edge).
       lowest_ground_near(ground(shown_[has_ball ? ball : heel]) + lock_shift[foot], target[foot]);  // found: has_*
       float landing = 0.0f;
+      vec2 landing_at(0.0f);
       // A step up found too late to be taken without a pop is not: the foot lands short of it
       // (a landing on its edge is nudged off, below) or on it and is raised by the spring.
-      if (landing_ground(state, frame_alpha, foot, landing, landing_in_s[foot]) &&
-          landing - foot_y_[foot] <= config_.max_foot_rise_mps * std::max(landing_in_s[foot], dt_s))
-        target[foot] = std::max(target[foot], landing);
+      if (landing_ground(state, frame_alpha, foot, landing, landing_in_s[foot], landing_at)) {
+        const bool rises = landing - foot_y_[foot] <= config_.max_foot_rise_mps * std::max(landing_in_s[foot], dt_s);
+        // Where a step up is not taken, the foot lands on the ground nearest its height within
+        // its contact patch (foothold); with none there (the landing well onto the step) it must
+        // climb however late: over the rest of the swing, not in the last frame under its front.
+        float lands_on = landing;
+        if (!rises)
+          for (const vec2 d : kPatchDirections) {
+            float g = 0.0f;
+            if (terrain_height_at(*ground_, landing_at + kPatch_m * d, g) &&
+                std::abs(g - foot_y_[foot]) < std::abs(lands_on - foot_y_[foot]))
+              lands_on = g;
+          }
+        if (lands_on == landing) target[foot] = std::max(target[foot], landing);
+        // A landing on a step's edge will be nudged off it onto the side the foot comes down on
+        // (foothold, when planted): the swing goes there over the rest of its way, so the foot
+        // does not jump on its first frame down.
+        const vec2 off_edge = nudge_onto(landing_at, lands_on);
+        swing_nudge_[foot] += (off_edge - swing_nudge_[foot]) * std::min(1.0f, dt_s / std::max(landing_in_s[foot], dt_s));
+      }
     }
+    if (planted_now[foot] || !has_ground_) swing_nudge_[foot] = vec2(0.0f);  // a planted foot's is the lock's
   }
   const float body_target = std::min(target[0], target[1]);
   if (!has_ground_) {
@@ -297,7 +318,7 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
   const float body = std::min({body_y_, foot_y_[0], foot_y_[1]});
   for (vec3& p : shown_) p.y += body;
   for (int foot = 0; foot < 2; ++foot) {
-    reach(foot, vec3(0.0f, foot_y_[foot] - body, 0.0f));
+    reach(foot, vec3(swing_nudge_[foot].x, foot_y_[foot] - body, swing_nudge_[foot].y));
     // The foot aligned to the slope: the ball follows the ground's rise from where the foot is
     // held, then the toe from the ball, each pitched about its parent by at most 30 degrees. A
     // swinging foot only lifts its front over ground that rises under it: it does not reach down

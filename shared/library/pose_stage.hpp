@@ -27,8 +27,9 @@
 //     the lower foot (the pelvis is lowered on slopes and steps, so the lower leg reaches without
 //     stretching). A swinging foot goes to the ground where the clip next plants it, at the rate
 //     that brings it there as it lands (a step up is taken in the air; one found too late to take
-//     without a pop is not), never below the ground under its front (a step down waits for the
-//     edge). A planted part on or just past a step's edge (its contact patch, a few cm, reaching
+//     without a pop is not, unless the landing has no lower ground near it: then it is climbed
+//     over the rest of the swing), never below the ground under its front (a step down waits for
+//     the edge); a landing that will be nudged off an edge (below) is swung to the nudged spot. A planted part on or just past a step's edge (its contact patch, a few cm, reaching
 //     both sides) rests on the side nearest the foot's height, the foot nudged off the edge; a
 //     planted foot a few cm off its ground is put on it. Otherwise the heights follow their
 //     targets through critically damped springs, the body's slower than the feet's. A hole under
@@ -122,7 +123,7 @@ class PoseStage {
   void turn_about(vec2 pivot, float share);
   bool turned_into_obstacle() const;
   void adapt_to_ground(const PlaybackState& state, float frame_alpha, float dt_s);
-  bool landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s);
+  bool landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s, vec2& at);
   bool lowest_ground_near(vec2 p, float& height) const;
   vec2 nudge_onto(vec2 p, float height) const;
   void lock_foot(int foot, float dt_s);
@@ -154,6 +155,7 @@ class PoseStage {
   float body_y_ = 0.0f, body_vy_ = 0.0f;        ///< The body's shown height offset and its rate.
   float foot_y_[2] = {0, 0}, foot_vy_[2] = {0, 0};  ///< Each foot's, before the body's.
   vec2 foothold_nudge_[2] = {vec2(0.0f), vec2(0.0f)};  ///< This frame's move of a planted part off a step's edge.
+  vec2 swing_nudge_[2] = {vec2(0.0f), vec2(0.0f)};  ///< A swinging foot's way towards its landing's nudge.
 };
 
 }  // namespace foresight
