@@ -394,8 +394,11 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       f.locked = false;
       return;
     }
-    // Planted now, or rolling from heel to ball: hold the part planted where it is shown now.
-    if (!f.locked || f.joint != joint) f = FootLock{true, joint, here + w * f.release, vec3(0.0f), 0.0f, false};
+    // Planted now: hold the planted part where it is shown now. Rolling from one part to the
+    // other (heel to ball, or ball to heel where a capture lifts the ball first): the part now
+    // held stays where it was shown last frame, so the roll does not slide it.
+    if (!f.locked) f = FootLock{true, joint, here + w * f.release, vec3(0.0f), 0.0f, false};
+    else if (f.joint != joint) f = FootLock{true, joint, previous_[static_cast<size_t>(joint)], vec3(0.0f), 0.0f, false};
     f.at += vec3(foothold_nudge_[foot].x, 0.0f, foothold_nudge_[foot].y);  // off a step's edge (adapt_to_ground)
     // Held on the ground plane only: its height is the clip's over the ground (adapt_to_ground).
     vec3 offset = f.at - here;

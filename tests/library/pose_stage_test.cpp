@@ -515,6 +515,70 @@ void walk_forward(const MotionLibrary& lib, PoseStage& stage, int first, int seg
   }
 }
 
+// Foot locking on capture the team did not make (the Bandai locomotion takes), played with the
+// root turning 2 deg a frame (steering) from a segment where a foot's hold rolls from one part to
+// the other (heel to ball, or ball to heel: the capture lifts the ball before the heel in
+// places): the held part (its ball when the ball is planted, else its heel, as the motion-quality
+// bench measures) does not slide from one planted frame to the next, on the roll's frame too.
+// (The newly held part was held from where the clip had moved it that frame: up to 1.2 cm, 36
+// cm/s on the maze.)
+TEST(PoseStage, OnCaptureTheHoldRollsFromPartToPartWithoutSliding) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionSource source;
+  source.motions_dir = test::mocap_dir() / "locomotion";
+  MotionLibrary lib;
+  std::string error;
+  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  // A segment with a roll: one of its feet planted on two frames running, its ball on one only.
+  const auto rolls_in = [&lib](int s) {
+    const Segment& seg = lib.graph.segments[s];
+    for (int f = seg.first_frame + 1; f < seg.end_frame; ++f)
+      for (int foot = 0; foot < 2; ++foot) {
+        const uint8_t bits = foot_ball_bit(foot) | foot_heel_bit(foot);
+        const uint8_t a = lib.foot_contact_at(seg.clip, f - 1), b = lib.foot_contact_at(seg.clip, f);
+        if ((a & bits) && (b & bits) && ((a ^ b) & foot_ball_bit(foot))) return true;
+      }
+    return false;
+  };
+  int first = -1;
+  for (int s = 0; s < lib.graph.num_segments() && first < 0; ++s)
+    if ((lib.graph.segments[s].tags & kTagLocomotion) && rolls_in(s) && !lib.graph.successors(s).empty()) first = s;
+  ASSERT_GE(first, 0) << "no roll in the capture's locomotion";
+  PoseStage stage(lib);
+  PlaybackState st{first, 0, Placement{}, -1};
+  stage.update(st, 0.0f);
+  uint8_t before = stage.contact();
+  std::vector<vec3> last(stage.shown().begin(), stage.shown().end());
+  float worst = 0.0f;
+  int rolls = 0, held = 0;
+  for (int frame = 1; frame <= 90; ++frame) {
+    const int frames = lib.graph.segments[st.segment].num_frames();
+    if (++st.frame >= frames) {  // on to the first successor, played as the tree would
+      st.frame = frames;
+      if (lib.graph.successors(st.segment).empty()) break;
+      playback_take(lib, st, lib.graph.first_transition[st.segment]);
+    }
+    const vec2 root = playback_root(lib, st).pos_m;
+    st.segment_start = Placement{root + rotate_ground(st.segment_start.pos_m - root, 0.035f), st.segment_start.heading_rad + 0.035f};
+    stage.update(st, 1.0f / 30.0f);
+    const uint8_t now = stage.contact();
+    for (int foot = 0; foot < 2; ++foot) {
+      const bool ball = now & foot_ball_bit(foot), heel = now & foot_heel_bit(foot);
+      const uint8_t bit = ball ? foot_ball_bit(foot) : foot_heel_bit(foot);
+      if ((!ball && !heel) || !(before & bit)) continue;  // not planted, or planted this frame
+      const auto j = static_cast<size_t>(ball ? foot_ball_joint(foot) : foot_heel_joint(foot));
+      rolls += ball != static_cast<bool>(before & foot_ball_bit(foot));
+      ++held;
+      worst = std::max(worst, glm::length(ground(stage.shown()[j]) - ground(last[j])));
+    }
+    before = now;
+    last.assign(stage.shown().begin(), stage.shown().end());
+  }
+  EXPECT_GT(held, 20);
+  EXPECT_GT(rolls, 0) << "the hold rolled from one part to the other";
+  EXPECT_LT(worst, 0.002f) << "2 mm a frame, 6 cm/s";
+}
+
 // Ground adaptation on capture the team did not make (the Bandai walk in inches under a dummy
 // root): walked up a 20 % slope, its planted parts stand on the ground under them, where the
 // played ones sink into it by up to the slope's rise along the stride.
