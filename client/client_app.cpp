@@ -189,7 +189,7 @@ class Session {
   Renderer renderer_;
   DebugOverlay overlay_;  ///< F1; drawn over the scene (also in screenshots).
   Scene scene_;
-  CollisionWorld obstacles_;  ///< scene_'s boxes, for the pose stages' held feet.
+  CollisionWorld obstacles_;  ///< scene_'s boxes: the pose stages' eased turns keep joints out of them.
   bool has_obstacles_ = false;
   std::string scene_name_;
   Clock::time_point start_ = Clock::now();
@@ -258,7 +258,7 @@ void Session::show_scene(const std::string& name, uint64_t hash, std::string_vie
   scene_hash_ = hash;
   has_obstacles_ = collision_world_build(scene_, obstacles_, error);
   if (!has_obstacles_)
-    std::fprintf(stderr, "foresight-client: scene '%s' has no collision world (%s): feet are held without it\n",
+    std::fprintf(stderr, "foresight-client: scene '%s' has no collision world (%s): turns are eased without it\n",
                  name.c_str(), error.c_str());
   rig_.set_scene(&scene_);
   renderer_.set_scene(scene_);

@@ -63,7 +63,7 @@ struct MotionQualityResult {
   double ground_error_cm_max = 0.0;
   int64_t pops = 0;
   double pops_per_min = 0.0;
-  int64_t added_pops = 0;            ///< Pops the played clip frames do not have (LibraryPops).
+  int64_t added_pops = 0;            ///< Pops over 10 % above the played clip frames' own (LibraryPops).
   double added_pops_per_min = 0.0;
   int64_t limit_violations = 0;
   int64_t discontinuities = 0;       ///< Jumps the pose stage inertialized.

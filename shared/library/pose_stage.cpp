@@ -144,6 +144,7 @@ bool PoseStage::turned_into_obstacle() const {
 // The ground under the ball of `foot` where the clip next plants that foot: the first planted
 // frame of the playing segment after this one, or the segment's end (where its successor starts)
 // if the foot lands later. Steering may still turn the segment; this is asked again every frame.
+// `height` is the ground under the part it will rest on, `at` where that part lands, `in_s` when.
 bool PoseStage::landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s,
                                vec2& at) {
   const Segment& seg = library_.graph.segments[state.segment];
@@ -266,8 +267,8 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
       lowest_ground_near(ground(shown_[has_ball ? ball : heel]) + lock_shift[foot], target[foot]);  // found: has_*
       float landing = 0.0f;
       vec2 landing_at(0.0f);
-      // A step up found too late to be taken without a pop is not: the foot lands short of it
-      // (a landing on its edge is nudged off, below) or on it and is raised by the spring.
+      // A step up found too late to be taken without a pop is not when the foot can land short of
+      // it (below); a landing on an edge is nudged off it.
       if (landing_ground(state, frame_alpha, foot, landing, landing_in_s[foot], landing_at)) {
         const bool rises = landing - foot_y_[foot] <= config_.max_foot_rise_mps * std::max(landing_in_s[foot], dt_s);
         // Where a step up is not taken, the foot lands on the ground nearest its height within
