@@ -1,12 +1,13 @@
 // client: the per-frame CPU work of foresight-client's avatar drawing, without a window.
 // N avatars play random segment sequences of the default library (each successor a real graph
-// transition), one frame per 30 Hz server tick, as the server plays them; a snapshot of all of
-// them is pushed into the client's SnapshotBuffer 20 times a second (arriving 40-50 ms later).
-// Render frames at 60 fps then time (1) SnapshotBuffer::sample at the frame's render time and
-// (2) the pose rebuild, the same call as Session::draw_avatars (client_app.cpp):
-// Renderer::add_avatar (playback_pose, i.e. motion_library_sample, and for a fractional frame the
-// next frame's too; FK with fk_pose, joint lerp, one instance matrix per bone). The Renderer
-// is used without a GL context: add_avatar touches no GL; the GPU upload and draw are not timed.
+// transition), one frame per 30 Hz server tick, as the server plays them, steering as the server
+// does by default: a third of them turn at 540 deg/s each way, re-drawn every second; a snapshot
+// of all of them is pushed into the client's SnapshotBuffer 20 times a second (arriving 40-50 ms
+// later). Render frames at 60 fps then time (1) SnapshotBuffer::sample at the frame's render time
+// and (2) the pose rebuild, the same calls as Session::draw_avatars (client_app.cpp): a
+// PoseStage per avatar (on flat ground, with an empty scene's collision world, as on the arena)
+// and Renderer::add_skeleton (a capsule per bone, a shadow per foot). The Renderer is used
+// without a GL context: add_skeleton touches no GL; the GPU upload and draw are not timed.
 // Snapshot pushes and the simulated server are outside the timed sections; nothing allocates in
 // them once warm (warm-up frames run first).
 #ifdef FORESIGHT_HAVE_CLIENT
@@ -15,6 +16,8 @@
 #include "bench_json.hpp"
 #include "library_build/library_source.hpp"
 #include "library/playback.hpp"
+#include "library/pose_stage.hpp"
+#include "world/collision_world.hpp"
 #include "renderer.hpp"
 #include "snapshot_buffer.hpp"
 
@@ -45,6 +48,8 @@ int bench_client(const ClientBenchOptions& o) {
 
   // The simulated server: avatars spawned into random segments at random frames.
   std::vector<client::AvatarEntry> server(n);
+  std::vector<float> turn_rad_per_tick(n, 0.0f);
+  const float steer = radians(540.0f) / static_cast<float>(kTickHz);
   for (size_t i = 0; i < n; ++i) {
     auto& a = server[i];
     a.id = static_cast<uint32_t>(i + 1);
@@ -53,8 +58,18 @@ int bench_client(const ClientBenchOptions& o) {
     a.state.frame = std::uniform_int_distribution<int>(
         0, lib.graph.segments[static_cast<size_t>(a.state.segment)].num_frames() - 1)(rng);
   }
+  int64_t ticks = 0;
   auto server_tick = [&] {
-    for (auto& a : server) {
+    ++ticks;
+    for (size_t i = 0; i < n; ++i) {
+      auto& a = server[i];
+      if ((ticks + static_cast<int64_t>(i)) % static_cast<int64_t>(kTickHz) == 0)
+        turn_rad_per_tick[i] = steer * static_cast<float>(std::uniform_int_distribution<int>(-1, 1)(rng));
+      if (turn_rad_per_tick[i] != 0.0f) {  // root steering: the segment's start turned about the root
+        const vec2 root = playback_root(lib, a.state).pos_m;
+        a.state.segment_start = {root + rotate_ground(a.state.segment_start.pos_m - root, turn_rad_per_tick[i]),
+                                 a.state.segment_start.heading_rad + turn_rad_per_tick[i]};
+      }
       ++a.state.frame;
       if (!playback_at_end(lib, a.state)) continue;
       const int first = lib.graph.first_transition[static_cast<size_t>(a.state.segment)];
@@ -72,6 +87,18 @@ int bench_client(const ClientBenchOptions& o) {
   shown.reserve(n);
   client::Renderer renderer;  // no init(): no GL objects, nothing to delete
   const vec3 colour(0.3f, 0.5f, 0.9f);
+  Scene empty;
+  empty.bounds = {vec2(-30.0f), vec2(30.0f)};
+  CollisionWorld world;
+  std::string error;
+  if (!collision_world_build(empty, world, error)) return std::fprintf(stderr, "%s\n", error.c_str()), 1;
+  std::vector<PoseStage> stages;  // per avatar id - 1, as the client keeps one per id
+  stages.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    stages.emplace_back(lib);
+    stages.back().set_ground(&empty.terrain);
+    stages.back().set_obstacles(&world);
+  }
 
   // Snapshots in flight: (arrival local time, server time, copy of the avatars); at most a few.
   struct InFlight {
@@ -129,7 +156,10 @@ int bench_client(const ClientBenchOptions& o) {
     buffer.sample(lib, buffer.render_time(local_now), shown);
     const auto b = Clock::now();
     renderer.begin_frame();
-    for (const client::ShownAvatar& s : shown) renderer.add_avatar(lib, s.state, s.frame_alpha, colour);
+    for (const client::ShownAvatar& s : shown)
+      renderer.add_skeleton(lib.skeleton.parents,
+                            stages[s.id - 1].update(s.state, frame == 0 ? 0.0f : static_cast<float>(kFrameS), s.frame_alpha),
+                            colour);
     const auto c = Clock::now();
     if (!measured) continue;
     sample_us.push_back(std::chrono::duration<double, std::micro>(b - a).count());
