@@ -65,11 +65,7 @@ int bench_client(const ClientBenchOptions& o) {
       auto& a = server[i];
       if ((ticks + static_cast<int64_t>(i)) % static_cast<int64_t>(kTickHz) == 0)
         turn_rad_per_tick[i] = steer * static_cast<float>(std::uniform_int_distribution<int>(-1, 1)(rng));
-      if (turn_rad_per_tick[i] != 0.0f) {  // root steering: the segment's start turned about the root
-        const vec2 root = playback_root(lib, a.state).pos_m;
-        a.state.segment_start = {root + rotate_ground(a.state.segment_start.pos_m - root, turn_rad_per_tick[i]),
-                                 a.state.segment_start.heading_rad + turn_rad_per_tick[i]};
-      }
+      if (turn_rad_per_tick[i] != 0.0f) a.state.segment_start = playback_turned_start(lib, a.state, turn_rad_per_tick[i]);
       ++a.state.frame;
       if (!playback_at_end(lib, a.state)) continue;
       const int first = lib.graph.first_transition[static_cast<size_t>(a.state.segment)];

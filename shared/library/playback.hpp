@@ -36,6 +36,13 @@ inline Placement playback_root(const MotionLibrary& lib, const PlaybackState& s)
   return motion_library_root_at(lib, s.segment, s.frame, s.segment_start);
 }
 
+/// The playing segment's start turned by `turn` (rad) about where the root stands now: root
+/// steering's rotation of the motion (LookaheadAvatar), the segment playing on from there.
+inline Placement playback_turned_start(const MotionLibrary& lib, const PlaybackState& s, float turn) {
+  const Placement now = playback_root(lib, s);
+  return {now.pos_m + rotate_ground(s.segment_start.pos_m - now.pos_m, turn), s.segment_start.heading_rad + turn};
+}
+
 /// The current pose (pelvis in world space).
 inline void playback_pose(const MotionLibrary& lib, const PlaybackState& s, Pose& out) {
   motion_library_sample(lib, s.segment, s.frame, s.segment_start, s.incoming_transition, out);

@@ -170,12 +170,7 @@ float LookaheadAvatar::frame_turn(float rad_per_s) const {
   return rad_per_s / (fps > 0.0f ? fps : 30.0f);
 }
 
-// The playing segment's start turned by `turn` about where the root stands now.
-Placement LookaheadAvatar::turned_start(float turn) const {
-  const Placement now = root();
-  return {now.pos_m + rotate_ground(playback_.segment_start.pos_m - now.pos_m, turn),
-          playback_.segment_start.heading_rad + turn};
-}
+Placement LookaheadAvatar::turned_start(float turn) const { return playback_turned_start(library_, playback_, turn); }
 
 bool LookaheadAvatar::rotate_playing(float turn, const ChildVeto* veto, bool keep_way_on) {
   const Placement rotated = turned_start(turn);

@@ -77,8 +77,7 @@ struct SteeredWalk {
   }
   void turn() {
     s.frame = 1;
-    const vec2 root = playback_root(lib, s).pos_m;
-    s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.314f), 0.314f};
+    s.segment_start = playback_turned_start(lib, s, 0.314f);
     stage.update(s, 1.0f / 30.0f);
   }
   void play_to(int frame) {
@@ -92,6 +91,16 @@ struct SteeredWalk {
     return std::abs(wrap_angle(heading_across(stage.animated(), left, right) - heading_across(stage.shown(), left, right)));
   }
 };
+
+// The built-in idle at the origin, shown once through `stage` (both feet planted); false when
+// the library has no idle.
+bool stand_idle(PoseStage& stage, PlaybackState& s) {
+  const int idle = library().graph.find_segment("idle");
+  if (idle < 0) return false;
+  s = PlaybackState{idle, 0, Placement{}, -1};
+  stage.update(s, 0.0f);
+  return true;
+}
 
 // Root steering turns a standing avatar about its root a few degrees a frame: the played feet
 // swing round with it, the shown ones stay where they were planted, on legs of unchanged length.
@@ -108,8 +117,7 @@ TEST(PoseStage, PlantedFeetStayPutWhileTheRootTurns) {
   float played_moved = 0.0f, shown_moved = 0.0f;
   for (int f = 1; f <= 10; ++f) {
     // 2 deg a frame about the root (60 deg/s), as LookaheadAvatar::steer rotates a segment.
-    const vec2 root = playback_root(lib, s).pos_m;
-    s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.035f), s.segment_start.heading_rad + 0.035f};
+    s.segment_start = playback_turned_start(lib, s, 0.035f);
     s.frame = f % lib.graph.segments[idle].num_frames();
     shown = stage.update(s, 1.0f / 30.0f);
     played_moved = std::max(played_moved, glm::length(stage.animated()[ball] - planted));
@@ -126,16 +134,14 @@ TEST(PoseStage, PlantedFeetStayPutWhileTheRootTurns) {
 // shown lifted (not planted) on the way, and ends where the clip has it.
 TEST(PoseStage, TheBodyTurnedFarOverAPlantedFootStepsIt) {
   const MotionLibrary& lib = library();
-  const int idle = lib.graph.find_segment("idle");
-  ASSERT_GE(idle, 0);
   PoseStage stage(lib);
-  PlaybackState s{idle, 0, Placement{}, -1};
-  stage.update(s, 0.0f);
+  PlaybackState s;
+  ASSERT_TRUE(stand_idle(stage, s));
+  const int idle = s.segment;
   bool lifted = false;
   for (int f = 1; f <= 60; ++f) {
     if (f <= 15) {  // 6 deg a frame for half a second: 90 deg
-      const vec2 root = playback_root(lib, s).pos_m;
-      s.segment_start = Placement{root + rotate_ground(s.segment_start.pos_m - root, 0.105f), s.segment_start.heading_rad + 0.105f};
+      s.segment_start = playback_turned_start(lib, s, 0.105f);
     }
     s.frame = f % lib.graph.segments[idle].num_frames();
     stage.update(s, 1.0f / 30.0f);
@@ -155,11 +161,10 @@ TEST(PoseStage, TheBodyTurnedFarOverAPlantedFootStepsIt) {
 // terrain scene's runs.) Any foot counted planted stands where the clip's does, in height.
 TEST(PoseStage, AFootStartingAStepIsNotPlantedOnThatFrame) {
   const MotionLibrary& lib = library();
-  const int idle = lib.graph.find_segment("idle");
-  ASSERT_GE(idle, 0);
   PoseStage stage(lib);
-  PlaybackState s{idle, 0, Placement{}, -1};
-  stage.update(s, 0.0f);
+  PlaybackState s;
+  ASSERT_TRUE(stand_idle(stage, s));
+  const int idle = s.segment;
   ASSERT_EQ(stage.contact() & (kLeftHeel | kRightHeel), kLeftHeel | kRightHeel);
   ASSERT_GT(stage.jump_m(), 0.3f);
   for (int f = 1; f <= 20; ++f) {
@@ -558,8 +563,7 @@ TEST(PoseStage, OnCaptureTheHoldRollsFromPartToPartWithoutSliding) {
       if (lib.graph.successors(st.segment).empty()) break;
       playback_take(lib, st, lib.graph.first_transition[st.segment]);
     }
-    const vec2 root = playback_root(lib, st).pos_m;
-    st.segment_start = Placement{root + rotate_ground(st.segment_start.pos_m - root, 0.035f), st.segment_start.heading_rad + 0.035f};
+    st.segment_start = playback_turned_start(lib, st, 0.035f);
     stage.update(st, 1.0f / 30.0f);
     const uint8_t now = stage.contact();
     for (int foot = 0; foot < 2; ++foot) {
@@ -670,8 +674,7 @@ TEST(PoseStage, OnACaptureOfAnotherUnitRootAndChannelOrderPlantedFeetStayPut) {
   int planted_pairs = 0;
   float shown_sum = 0.0f, played_sum = 0.0f;
   for (int f = 1; f < lib.graph.segments[walking].num_frames(); ++f) {
-    const vec2 root = playback_root(lib, st).pos_m;
-    st.segment_start = Placement{root + rotate_ground(st.segment_start.pos_m - root, 0.035f), st.segment_start.heading_rad + 0.035f};
+    st.segment_start = playback_turned_start(lib, st, 0.035f);
     st.frame = f;
     const std::span<const vec3> shown = stage.update(st, 1.0f / 30.0f);
     for (int foot = 0; foot < 2; ++foot) {
