@@ -82,7 +82,7 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   contact_ = library_.foot_contact.empty() ? 0 : library_.foot_contact_at(seg.clip, clip_frame);
   shown_ = animated_;
   foothold_nudge_[0] = foothold_nudge_[1] = vec2(0.0f);  // set by adapt_to_ground, if it runs
-  if (config_.inertialization) inertialize(dt_s);
+  if (config_.inertialization) inertialize(state, dt_s);
   if (config_.turn_easing) ease_turn(state, dt_s);
   if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
   if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
@@ -342,9 +342,13 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
   }
 }
 
-void PoseStage::inertialize(float dt_s) {
+void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
   if (has_previous_) {
-    bool jumped = false;
+    // Another segment entered without a transition (a fallback to idle) is a jump however little
+    // its joints move (a transition's blend carries the pose on, a fallback nothing); so is any
+    // joint moving further in a frame than the clips ever do. (An idle restarted by a fallback
+    // while standing is left to the jump test: its loop's ends meet.)
+    bool jumped = state.incoming_transition < 0 && state.segment != previous_state_.segment;
     for (size_t j = 0; j < animated_.size() && !jumped; ++j)
       jumped = glm::length(animated_[j] - previous_animated_[j]) > jump_m_;
     if (jumped) {

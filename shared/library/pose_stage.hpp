@@ -3,9 +3,10 @@
 // playback's pose after this, one stage per avatar, called once per shown frame.
 //
 //  1. Inertialization. When the sampled pose jumps (any joint moves further in one frame than the
-//     library's clips ever move one: a fallback to idle, a snapshot correction, a reconnect), the
-//     jump becomes an offset from the new pose that decays to zero over `inertialize_s` (smoothstep,
-//     so it starts flat and lands flat) instead of a pop. A foot the new pose plants but the
+//     library's clips ever move one: a snapshot correction, a reconnect) or another segment is
+//     entered without a transition however little it moves (a fallback to idle: no blend carries
+//     the pose on), the jump becomes an offset from the new pose that decays to zero over
+//     `inertialize_s` (smoothstep, so it starts flat and lands flat) instead of a pop. A foot the new pose plants but the
 //     offset still holds in the air (a fallback in mid-stride) is landing, not planted, until it
 //     is within 1 cm of its pose's height.
 //  2. Turn easing. Root steering turns the whole body about the root at up to 540 deg/s, starting
@@ -102,7 +103,8 @@ class PoseStage {
   /// This frame's FootContactBit byte: the clip frame's, less the feet the stage is stepping and
   /// those an inertialized jump still holds in the air (landing).
   uint8_t contact() const { return contact_; }
-  /// Frames whose sampled pose jumped and were inertialized, since construction.
+  /// Frames whose sampled pose jumped (or entered a segment without a transition) and were
+  /// inertialized, since construction.
   int discontinuities() const { return discontinuities_; }
   /// A joint moving farther than this in a frame is a jump (MotionLibrary::max_joint_step_m
   /// with a margin for root steering).
@@ -118,7 +120,7 @@ class PoseStage {
     float release_left_s = 0;
     bool stepping = false;   ///< The release is a step: the foot is lifted, not planted.
   };
-  void inertialize(float dt_s);
+  void inertialize(const PlaybackState& state, float dt_s);
   void ease_turn(const PlaybackState& state, float dt_s);
   void turn_about(vec2 pivot, float share);
   bool turned_into_obstacle() const;

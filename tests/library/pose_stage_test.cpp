@@ -255,6 +255,45 @@ TEST(PoseStage, AFootAnInertializedJumpHoldsInTheAirIsNotPlantedUntilDown) {
   EXPECT_TRUE(landed);
 }
 
+// A fallback to idle without a transition where a walking segment ends (as the look-ahead falls
+// back when nothing feasible is left; 13 such pops a minute on the terrain scene before): the
+// joints move less than the jump test, but the switch has no blend, so it is inertialized all the
+// same, and the shown pose accelerates less about the switch than the played one does.
+TEST(PoseStage, ASwitchWithoutATransitionIsInertializedHoweverSmall) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  const auto largest_acceleration = [](const std::vector<std::vector<vec3>>& frames, size_t at) {
+    float a = 0.0f;
+    for (size_t j = 0; j < frames[at].size(); ++j)
+      a = std::max(a, glm::length(frames[at + 1][j] - 2.0f * frames[at][j] + frames[at - 1][j]));
+    return a;
+  };
+  for (const char* name : {"walk_l", "walk_r", "walk_slow_l", "walk_slow_r"}) {
+    const int walk = lib.graph.find_segment(name);
+    ASSERT_GE(walk, 0) << name;
+    PoseStage stage(lib);
+    std::vector<std::vector<vec3>> shown, played;
+    PlaybackState s{walk, 0, Placement{}, -1};
+    const size_t switch_at = static_cast<size_t>(lib.graph.segments[walk].num_frames());
+    for (size_t f = 0; f <= switch_at + 8; ++f, ++s.frame) {
+      if (f == switch_at) s = PlaybackState{idle, 0, playback_next_start(lib, s), -1};
+      const std::span<const vec3> p = stage.update(s, f == 0 ? 0.0f : 1.0f / 30.0f);
+      shown.emplace_back(p.begin(), p.end());
+      played.emplace_back(stage.animated().begin(), stage.animated().end());
+    }
+    float moved = 0.0f;
+    for (size_t j = 0; j < played[0].size(); ++j)
+      moved = std::max(moved, glm::length(played[switch_at][j] - played[switch_at - 1][j]));
+    float shown_peak = 0.0f;
+    for (size_t f = switch_at - 1; f <= switch_at + 6; ++f) shown_peak = std::max(shown_peak, largest_acceleration(shown, f));
+    const float played_peak = std::max(largest_acceleration(played, switch_at - 1), largest_acceleration(played, switch_at));
+    EXPECT_LT(moved, stage.jump_m()) << name << ": a switch the jump test alone would not see";
+    EXPECT_EQ(stage.discontinuities(), 1) << name;
+    EXPECT_LT(shown_peak, played_peak) << name;
+  }
+}
+
 // A jump into another pose (an idle stand to mid-stride somewhere else, as a correction or a
 // fallback may be) gives every joint its own decaying offset; the legs keep their bones' lengths
 // all the while (without solving them again a shin was shown 7 cm short).
