@@ -333,6 +333,10 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
       const vec3 parent = shown_[part - 1];
       const float length = glm::length(shown_[part] - parent);
       const float rise = std::clamp(g - from, planted ? -0.5f * length : 0.0f, 0.5f * length);
+      // A ball over ground lower than the foot pitches to (the heel on a step, the ball past its
+      // edge) hangs: it is not on the ground, whatever the clip plants; the heel is held.
+      if (part == ankle + 1 && rise > g - from && (contact_ & foot_ball_bit(foot)) && (contact_ & foot_heel_bit(foot)))
+        contact_ &= static_cast<uint8_t>(~foot_ball_bit(foot));
       from = g;
       if (length < 1e-4f || std::abs(rise) < 1e-5f) continue;
       const vec3 raised = shown_[part] + vec3(0.0f, rise, 0.0f) - parent;
