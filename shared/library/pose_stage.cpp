@@ -18,6 +18,7 @@ constexpr float kPastEdge_m = 0.015f;      // how far past a step's edge a nudge
 constexpr vec2 kPatchDirections[] = {vec2(1.0f, 0.0f), vec2(-1.0f, 0.0f), vec2(0.0f, 1.0f),
                                      vec2(0.0f, -1.0f)};
 constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where it was expected
+constexpr float kHanging_m = 0.02f;        // a planted part this far over the ground under it is not on it
 constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to its pose's height is down
 
 // 1 at the start, 0 at the end, flat at both (smoothstep of the time left).
@@ -333,15 +334,19 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
       const vec3 parent = shown_[part - 1];
       const float length = glm::length(shown_[part] - parent);
       const float rise = std::clamp(g - from, planted ? -0.5f * length : 0.0f, 0.5f * length);
-      // A ball over ground lower than the foot pitches to (the heel on a step, the ball past its
-      // edge) hangs: it is not on the ground, whatever the clip plants; the heel is held.
-      if (part == ankle + 1 && rise > g - from && (contact_ & foot_ball_bit(foot)) && (contact_ & foot_heel_bit(foot)))
-        contact_ &= static_cast<uint8_t>(~foot_ball_bit(foot));
       from = g;
       if (length < 1e-4f || std::abs(rise) < 1e-5f) continue;
       const vec3 raised = shown_[part] + vec3(0.0f, rise, 0.0f) - parent;
       const vec3 delta = parent + raised * (length / glm::length(raised)) - shown_[part];
       for (size_t j = part; j <= toe; ++j) shown_[j] += delta;
+    }
+    // A part the clip plants that is shown well above the ground under it (a ball past a step's
+    // edge the foot stands on, the foot still coming down to lower ground) hangs: not planted.
+    for (const auto& [part, bit] : {std::pair{ankle, foot_heel_bit(foot)}, std::pair{ankle + 1, foot_ball_bit(foot)}}) {
+      float g = 0.0f;
+      if ((contact_ & bit) && terrain_height_at(*ground_, ground(shown_[part]), g) &&
+          shown_[part].y - animated_[part].y - g > kHanging_m)
+        contact_ &= static_cast<uint8_t>(~bit);
     }
   }
 }

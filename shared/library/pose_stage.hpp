@@ -32,10 +32,10 @@
 //     over the rest of the swing), never below the ground under its front (a step down waits for
 //     the edge); a landing that will be nudged off an edge (below) is swung to the nudged spot. A
 //     planted part on or just past a step's edge (its contact patch, a few cm, reaching both
-//     sides) rests on the side nearest the foot's height, the foot nudged off the edge; a heel on
-//     a step whose ball is past the edge over lower ground than the foot pitches to leaves the
-//     ball hanging, not planted; a planted foot a few cm off its ground is put on it. Otherwise
-//     the heights follow their
+//     sides) rests on the side nearest the foot's height, the foot nudged off the edge; a planted
+//     part that is then shown more than 2 cm over the ground under it (a heel or ball hanging past
+//     the edge the other part stands behind) hangs: not planted; a planted foot a few cm off its
+//     ground is put on it. Otherwise the heights follow their
 //     targets through critically damped springs, the body's slower than the feet's. A hole under
 //     a foot keeps its last height.
 //  5. Foot locking. While the clip plants a foot (foot_contact.hpp: heel or ball), that part keeps
