@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 namespace foresight::server {
@@ -28,6 +29,30 @@ double release_free_heap() {
   const auto start = std::chrono::steady_clock::now();
   malloc_trim(0);
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+HeapTrimmer::HeapTrimmer(std::chrono::milliseconds every) : thread_([this, every] { run(every); }) {}
+
+HeapTrimmer::~HeapTrimmer() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void HeapTrimmer::run(std::chrono::milliseconds every) {
+  // The lowest priority this thread may take (Linux: a thread's own nice value): the tick and the
+  // look-ahead workers always come first. Failing that it trims at the normal priority.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!wake_.wait_for(lock, every, [this] { return stop_; })) {
+    lock.unlock();
+    last_ms_.store(release_free_heap(), std::memory_order_relaxed);
+    trims_.fetch_add(1, std::memory_order_relaxed);
+    lock.lock();
+  }
 }
 
 }  // namespace foresight::server

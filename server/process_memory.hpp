@@ -2,7 +2,12 @@
 // The server process's memory as the system sees it: its resident set, and the heap settings and
 // upkeep that make that resident set follow the work (issue 20 item 5; docs/PERFORMANCE.md
 // "Server memory per player").
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
+#include <thread>
 
 namespace foresight::server {
 
@@ -19,5 +24,31 @@ void configure_heap();
 /// budget and grow the largest trees). Returns the milliseconds it took (about 1 ms for 200
 /// players), so the caller can report it.
 double release_free_heap();
+
+/// release_free_heap() every `every`, on a thread of its own at the lowest priority, never in the
+/// tick: at 1000 players it takes 14-17 ms, and run in the tick it made that tick overrun (two of
+/// five overruns in two 1000-bot runs, docs/PERFORMANCE.md). Stops (and joins) when destroyed.
+class HeapTrimmer {
+ public:
+  explicit HeapTrimmer(std::chrono::milliseconds every);
+  ~HeapTrimmer();
+  HeapTrimmer(const HeapTrimmer&) = delete;
+  HeapTrimmer& operator=(const HeapTrimmer&) = delete;
+
+  /// Milliseconds the last trim took (0 before the first).
+  double last_ms() const { return last_ms_.load(std::memory_order_relaxed); }
+  /// Trims done so far.
+  uint64_t trims() const { return trims_.load(std::memory_order_relaxed); }
+
+ private:
+  void run(std::chrono::milliseconds every);
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::atomic<double> last_ms_{0.0};
+  std::atomic<uint64_t> trims_{0};
+  std::thread thread_;  ///< Last: started once the rest is there.
+};
 
 }  // namespace foresight::server

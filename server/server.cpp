@@ -245,9 +245,6 @@ void Server::run_admin_commands() {
 
 void Server::finish_tick(TickRecord& record, const StageTimer& timer) {
   record.players = num_players();
-  // Every few seconds the heap's free pages go back to the system (process_memory.hpp); its
-  // millisecond counts in this tick.
-  if (tick_ % (kHeapTrimEvery_s * static_cast<uint32_t>(config_.tick_hz)) == 0) heap_trim_ms_ = release_free_heap();
   record.tick_ms = timer.total_ms();
   const bool overrun = record.tick_ms > 1000.0f / static_cast<float>(config_.tick_hz);
   stats_.record(record, overrun);
@@ -316,7 +313,7 @@ void Server::publish_admin(Clock::time_point now) {
 MemoryFigures Server::memory_figures() const {
   MemoryFigures f;
   f.resident_bytes = resident_memory_bytes();
-  f.heap_trim_ms = heap_trim_ms_;
+  f.heap_trim_ms = heap_trimmer_.last_ms();
   for (const GraphAvatar& g : graph_avatars_.items()) f.tree_node_bytes += g.avatar->tree().node_bytes();
   f.tree_node_bytes += node_pool_.bytes_spare();
   for (const Session& s : sessions_.sessions()) f.snapshot_history_bytes += s.sent_views.bytes();

@@ -18,9 +18,9 @@
 //   7 look       every motion-graph avatar's feasible motion tree grows until the tick's
 //                deadline, shared by need, on `threads` cores, for the decisions to come: last,
 //                so that a slow stage before it shortens the growth, not the tick
-//   8 finish     tick figures, every 5 s the heap's free pages back to the system
-//                (process_memory.hpp), the overrun line, the admin endpoint's figures, the status
-//                line
+//   8 finish     tick figures, the overrun line, the admin endpoint's figures, the status line
+//                (the heap's free pages go back to the system every 5 s on a thread of its own,
+//                HeapTrimmer in process_memory.hpp, never in a tick)
 //
 // Avatars live in one table per kind (avatars.hpp) addressed by generation-counted handles;
 // sessions in the session table (session_table.hpp). run() loops run_tick at tick_hz until
@@ -35,6 +35,7 @@
 #include "lookahead/reservations.hpp"
 #include "lookahead_scheduler.hpp"
 #include "lookahead_workers.hpp"
+#include "process_memory.hpp"
 #include "protocol/sent_views.hpp"
 #include "server_config.hpp"
 #include "server_counters.hpp"
@@ -177,8 +178,8 @@ class Server : private SessionEvents {
   CollisionWorld world_;
   /// Every avatar's motion-tree nodes, in chunks (before the avatars: they give them back).
   MotionNodePool node_pool_;
-  static constexpr uint32_t kHeapTrimEvery_s = 5;
-  double heap_trim_ms_ = 0;  ///< The last release_free_heap().
+  /// The heap's free pages go back to the system every 5 s, off the tick (process_memory.hpp).
+  HeapTrimmer heap_trimmer_{std::chrono::seconds(5)};
   MotionTreeConfig tree_config_;
   int spawn_segment_ = -1;
   /// Places near the scene's spawns where the standing body fits the scene, nearest first: a
