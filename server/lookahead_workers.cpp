@@ -1,5 +1,7 @@
 #include "lookahead_workers.hpp"
 
+#include "thread_priority.hpp"
+
 #include <algorithm>
 
 namespace foresight::server {
@@ -15,6 +17,18 @@ LookaheadWorkers::~LookaheadWorkers() {
   }
   wake_.notify_all();
   for (std::thread& t : pool_) t.join();
+}
+
+bool LookaheadWorkers::make_realtime(int priority, std::string& error) {
+  for (std::thread& t : pool_)
+    if (!server::make_realtime(t.native_handle(), priority, error)) return false;
+  return true;
+}
+
+bool LookaheadWorkers::realtime() {
+  for (std::thread& t : pool_)
+    if (!is_realtime(t.native_handle())) return false;
+  return true;
 }
 
 int LookaheadWorkers::drain(const std::function<void(int, int)>& job, int items, int worker) {

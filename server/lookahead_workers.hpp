@@ -9,6 +9,7 @@
 #include <condition_variable>
 #include <functional>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -27,6 +28,10 @@ class LookaheadWorkers {
   /// it (`worker`: 0 for the calling thread, 1.. for the others; one thread's calls never
   /// overlap); returns when all are done. `job` must not throw.
   void run(int items, const std::function<void(int item, int worker)>& job);
+  /// Puts every worker (not the caller) in the real-time FIFO class (thread_priority.hpp).
+  bool make_realtime(int priority, std::string& error);
+  /// Every worker is in the FIFO class (true with no workers).
+  bool realtime();
   /// Items claimed by threads other than the caller since construction (tests: work is shared).
   long long items_by_others() const { return items_by_others_.load(std::memory_order_relaxed); }
 

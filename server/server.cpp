@@ -6,6 +6,7 @@
 
 #include "protocol/input_packet.hpp"
 #include "protocol/quantize.hpp"
+#include "thread_priority.hpp"
 #include "thread_sched.hpp"
 #include "transport/scene_transfer.hpp"
 #include "world/data_paths.hpp"
@@ -16,6 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <thread>
+
+#include <pthread.h>
 
 namespace foresight::server {
 
@@ -172,6 +175,7 @@ std::vector<uint32_t> Server::avatar_ids() const {
 }
 
 void Server::run() {
+  enter_realtime();
   const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.tick_hz));
   Clock::time_point next = Clock::now();
   while (!stop_requested_.load()) {
@@ -182,6 +186,19 @@ void Server::run() {
     std::this_thread::sleep_until(next);
   }
   close_sessions();
+}
+
+void Server::enter_realtime() {
+  const int priority = config_.realtime_priority;
+  if (priority <= 0) return;
+  std::string error;
+  if (make_realtime(pthread_self(), priority, error) && workers_->make_realtime(priority, error)) {
+    realtime_.store(true);
+    std::fprintf(stderr, "foresight-server: the tick thread and %d look-ahead worker(s) run in the real-time FIFO class at priority %d\n",
+                 workers_->threads() - 1, priority);
+  } else {
+    std::fprintf(stderr, "foresight-server: %s; ticking at normal priority\n", error.c_str());
+  }
 }
 
 void Server::close_sessions() {

@@ -70,6 +70,9 @@ class Server : private SessionEvents {
   /// Ticks at tick_hz until stop() (from any thread or a signal handler).
   void run();
   void stop() { stop_requested_.store(true); }
+  /// run() put the tick thread and the look-ahead workers in the real-time class
+  /// (ServerConfig::realtime_priority, and the system allowed it).
+  bool realtime() const { return realtime_.load(); }
   /// Graceful shutdown: tells every client (Refuse ShuttingDown, sent twice against a loss) and
   /// closes its session. run() does it when stopped; a client then knows at once instead of
   /// after its timeout, and bots reconnect with back-off.
@@ -119,6 +122,8 @@ class Server : private SessionEvents {
  private:
   // Stages of run_tick (server.cpp), in order.
   void run_admin_commands();
+  /// run()'s thread and the workers into the real-time class, if configured (logged either way).
+  void enter_realtime();
   void think_fighters();                      // server_fighters.cpp
   void advance(TickRecord& record);
   void animate_fighters(int64_t frames_due);  // server_fighters.cpp
@@ -249,6 +254,7 @@ class Server : private SessionEvents {
   uint32_t next_overrun_log_tick_ = 0;
   TickStats stats_;
   std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> realtime_{false};
 };
 
 }  // namespace foresight::server

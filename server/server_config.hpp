@@ -34,6 +34,11 @@ struct ServerConfig {
   /// expansions per tick instead of a time budget; 0 uses time.
   int64_t expansions_per_avatar = 0;
   int threads = 0;                 ///< Look-ahead threads, the tick thread included (0: one per core).
+  /// > 0: run() puts the tick thread and the look-ahead workers in the real-time FIFO class at
+  /// this priority (1-99; thread_priority.hpp), so that a woken tick thread never waits for a
+  /// CPU behind other programs; refused without CAP_SYS_NICE or RLIMIT_RTPRIO (logged, the
+  /// server then ticks at normal priority). 0: the normal class.
+  int realtime_priority = 0;
   double status_every_s = 10.0;    ///< A status line in the log this often (0: never).
   Strategy strategy = Strategy::kCommand;
   int tree_max_nodes = 8192;       ///< Per avatar (56 B per node), at most kMaxTreeNodes.

@@ -38,6 +38,10 @@ void add_server_options(CLI::App& app, ServerCommandLine& out) {
       ->check(CLI::Range(int64_t{0}, int64_t{10000000}))->capture_default_str();
   app.add_option("--threads", c.threads, "Look-ahead threads, the tick thread included (0: one per core)")
       ->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--realtime-priority", c.realtime_priority,
+                 "Run the tick and look-ahead threads in the real-time FIFO class at this priority (1-99; needs "
+                 "CAP_SYS_NICE or ulimit -r; 0: normal class)")
+      ->check(CLI::Range(0, 99))->capture_default_str();
   app.add_option("--status-every-s", c.status_every_s, "Log a status line this often (0: never)")
       ->check(CLI::Range(0.0, 86400.0))->capture_default_str();
   app.add_option("--strategy", out.strategy_name, "Exploration strategy: " + strategy_names())->capture_default_str();
