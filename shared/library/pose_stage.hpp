@@ -6,9 +6,9 @@
 //     library's clips ever move one: a snapshot correction, a reconnect) or another segment is
 //     entered without a transition however little it moves (a fallback to idle: no blend carries
 //     the pose on), the jump becomes an offset from the new pose that decays to zero over
-//     `inertialize_s` (smoothstep, so it starts flat and lands flat) instead of a pop. A foot the new pose plants but the
-//     offset still holds in the air (a fallback in mid-stride) is landing, not planted, until it
-//     is within 1 cm of its pose's height.
+//     `inertialize_s` (smoothstep, so it starts flat and lands flat) instead of a pop. A foot the
+//     new pose plants but the offset still holds in the air (a fallback in mid-stride) is
+//     landing, not planted, until it is within 1 cm of its pose's height.
 //  2. Turn easing. Root steering turns the whole body about the root at up to 540 deg/s, starting
 //     and stopping at full speed: a hand 0.4 m from the root would jump 0.13 m a frame. The
 //     steering's part of the turn (the segment's start rotated while the segment plays on) is
@@ -35,9 +35,8 @@
 //     sides) rests on the side nearest the foot's height, the foot nudged off the edge; a planted
 //     part that is then shown more than 2 cm over the ground under it (a heel or ball hanging past
 //     the edge the other part stands behind) hangs: not planted; a planted foot a few cm off its
-//     ground is put on it. Otherwise the heights follow their
-//     targets through critically damped springs, the body's slower than the feet's. A hole under
-//     a foot keeps its last height.
+//     ground is put on it. Otherwise the heights follow their targets through critically damped
+//     springs, the body's slower than the feet's. A hole under a foot keeps its last height.
 //  5. Foot locking. While the clip plants a foot (foot_contact.hpp: heel or ball), that part keeps
 //     the ground position it had when it was planted (its height stays the clip's over the ground
 //     under it, 4.), through root steering, blends and the
