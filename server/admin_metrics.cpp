@@ -84,6 +84,9 @@ std::string admin_metrics_prometheus(const AdminMetrics& m) {
   line(out, "foresight_fighter_strikes_total", "counter", "Fighters' strikes judged.", static_cast<double>(m.fighter_strikes));
   line(out, "foresight_fighter_hits_total", "counter", "Fighters' strikes that hit.", static_cast<double>(m.fighter_hits));
   line(out, "foresight_uptime_seconds", "gauge", "Since the server started.", m.uptime_s);
+  line(out, "foresight_tick_realtime", "gauge",
+       "1 when the tick and look-ahead threads run in the real-time class (--realtime-priority, granted).",
+       m.realtime ? 1.0 : 0.0);
   line(out, "process_resident_memory_bytes", "gauge", "Resident memory size in bytes.",
        static_cast<double>(m.memory.resident_bytes));
   line(out, "foresight_tree_node_bytes", "gauge", "Node storage of every motion tree (grows with the nodes the budget pays for).",
@@ -111,7 +114,7 @@ std::string admin_metrics_json(const AdminMetrics& m) {
       {"fighters", m.fighters},
       {"joins_waiting", m.joins_waiting},
       {"config", {{"tick_hz", m.tick_hz}, {"snapshot_hz", m.snapshot_hz}, {"budget_ms", m.budget_limit_ms},
-                  {"margin_ms", m.margin_ms}, {"strategy", m.strategy}}},
+                  {"margin_ms", m.margin_ms}, {"strategy", m.strategy}, {"realtime", m.realtime}}},
       {"tick_ms", {{"last", m.last.tick_ms}, {"p50", m.tick_ms_p50}, {"p99", m.tick_ms_p99}, {"max", m.tick_ms_max}}},
       {"overruns", m.overruns},
       {"budget_ms", m.last.budget_ms},

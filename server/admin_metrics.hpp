@@ -29,6 +29,7 @@ struct AdminMetrics {
   int players = 0, max_players = 0, fighters = 0, joins_waiting = 0;
   std::string scene, locomotion, strategy;
   double budget_limit_ms = 0, margin_ms = 0;
+  bool realtime = false;  ///< The tick's threads run in the real-time class (Server::realtime).
   // Ticks.
   std::array<uint64_t, TickStats::kBucketsMs.size()> tick_buckets{};
   uint64_t ticks = 0, overruns = 0;

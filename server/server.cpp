@@ -302,6 +302,7 @@ void Server::publish_admin(Clock::time_point now) {
   m.strategy = strategy_name(config_.strategy);
   m.budget_limit_ms = config_.lookahead_budget_ms;
   m.margin_ms = config_.tick_safety_margin_ms;
+  m.realtime = realtime_.load();
   m.tick_buckets = stats_.buckets();
   m.ticks = stats_.ticks();
   m.overruns = stats_.overruns();

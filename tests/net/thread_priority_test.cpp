@@ -1,13 +1,15 @@
 // The tick's threads in the real-time class (server/thread_priority.hpp): where the system allows
 // it (root, CAP_SYS_NICE, or an RLIMIT_RTPRIO), the tick thread and every look-ahead worker run in
 // the FIFO class and the server ticks; where it does not (a container's default capabilities), the
-// refusal says what to grant and the server ticks all the same, at normal priority.
+// refusal says what to grant and the server ticks all the same, at normal priority; /metrics says
+// which.
 #include "lookahead_workers.hpp"
 #include "raw_client.hpp"  // test_server_config
 #include "server.hpp"
 #include "thread_priority.hpp"
 
 #include <gtest/gtest.h>
+#include <httplib.h>
 
 #include <atomic>
 #include <chrono>
@@ -55,6 +57,8 @@ TEST(ThreadPriority, TheServerTicksInTheRealTimeClassWhereAllowedAndAtNormalPrio
   server::ServerConfig c = test::test_server_config("maze");
   c.threads = 2;
   c.realtime_priority = 5;
+  c.admin_port = 0;  // the admin endpoint reports the class
+  c.admin_token = "secret";
   server::Server server;
   std::string error;
   ASSERT_TRUE(server.start(c, error)) << error;
@@ -64,11 +68,16 @@ TEST(ThreadPriority, TheServerTicksInTheRealTimeClassWhereAllowedAndAtNormalPrio
     tick_thread_realtime = server::is_realtime(pthread_self());
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  httplib::Client admin("127.0.0.1", server.admin_port());
+  const auto metrics = admin.Get("/metrics", {{"Authorization", "Bearer secret"}});
   server.stop();
   ticking.join();
   EXPECT_GE(server.tick(), 6u) << "400 ms at 30 Hz";
   EXPECT_EQ(server.realtime(), system_allows_realtime());
   EXPECT_EQ(tick_thread_realtime.load(), server.realtime());
+  ASSERT_TRUE(metrics) << "the admin endpoint answers";
+  const std::string line = std::string("\nforesight_tick_realtime ") + (server.realtime() ? "1" : "0") + "\n";
+  EXPECT_NE(metrics->body.find(line), std::string::npos) << metrics->body.substr(0, 400);
 }
 
 }  // namespace
