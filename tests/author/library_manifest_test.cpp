@@ -53,6 +53,7 @@ TEST(DefaultLibrary, HasEveryRequiredClip) {
       EXPECT_NE(find_clip(std::string(step) + foot), nullptr) << step << foot;
   for (const char* name :
        {"idle", "crouch_idle", "crouch_down", "stand_up", "side_step_left", "side_step_right",
+        "step_forward_left", "step_forward_right",
         "idle_turn_left_90", "idle_turn_right_90", "idle_turn_180", "crouch_idle_turn_left_90",
         "crouch_idle_turn_right_90", "fight_stance", "idle_to_stance", "stance_to_idle"})
     EXPECT_NE(find_clip(name), nullptr) << name;

@@ -140,6 +140,14 @@ TEST(LocomotionQuality, SpeedsAndStepLengths) {
   EXPECT_LT(std::abs(left.back().pos_m.y), 0.02f);
   const std::vector<Placement> right = clip_root_track(find_clip("side_step_right")->clip);
   EXPECT_LT(right.back().pos_m.x, -0.25f);
+  // Half steps forward close a gap shorter than a walk's first step (a fighter 1.3 m from its
+  // target, whose walk would touch it, side-stepped on the spot without one).
+  for (const char* name : {"step_forward_left", "step_forward_right"}) {
+    const std::vector<Placement> track = clip_root_track(find_clip(name)->clip);
+    EXPECT_NEAR(track.back().pos_m.y - track.front().pos_m.y, 0.2f, 0.02f) << name;
+    EXPECT_LT(std::abs(track.back().pos_m.x - track.front().pos_m.x), 0.02f) << name;
+    EXPECT_LT(std::abs(degrees(track.back().heading_rad - track.front().heading_rad)), 1.0f) << name;
+  }
 }
 
 // The nominal turn of a clip from its name: "..._left_45_l" is +45 deg, "_right_22_" -22.5 deg
