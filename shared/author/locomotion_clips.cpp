@@ -163,10 +163,11 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
     set_step(s, 1 - side, 0.12f, 0.15f, 0.25f);
     c.add(s);
   }
-  // A half step forward from idle (the leading foot steps, the other closes): closes a gap
-  // shorter than a walk's first step, up to a wall, a doorway or a fighter's target.
+  // A half step forward from idle (the leading foot steps, the other closes): a fighter's footwork
+  // to close a gap shorter than a walk's first step (one stopped 1.3 m from its target, whose
+  // walk would touch it, side-stepped on the spot without it). Players' trees leave it out.
   for (int side = 0; side < 2; ++side) {
-    LocomotionSpec s = transition_spec(side == kLeft ? "step_forward_left" : "step_forward_right", loco,
+    LocomotionSpec s = transition_spec(side == kLeft ? "step_forward_left" : "step_forward_right", loco | kTagFootwork,
                                        idle, idle, frames_s(16), {vec2(0.0f, 0.20f), 0.0f}, g);
     set_step(s, side, 0.0f, 0.07f, 0.17f);
     set_step(s, 1 - side, 0.12f, 0.15f, 0.25f);

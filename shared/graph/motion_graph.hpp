@@ -20,6 +20,9 @@ enum SegmentTag : uint32_t {
   kTagFight = 1u << 3,
   kTagTurn = 1u << 4,
   kTagRun = 1u << 5,
+  /// Short repositioning steps (a half step forward): a fighter's footwork to close in on its
+  /// target. Players' trees leave them out (MotionTreeConfig::excluded_tags).
+  kTagFootwork = 1u << 6,
 };
 
 struct Segment {

@@ -56,8 +56,10 @@ struct MotionTreeConfig {
   /// look-ahead.
   bool check_collisions = true;
   /// Segments with any of these tags are never added: a player steering with arrow keys does not
-  /// mean to throw punches (SegmentTag bits, graph/motion_graph.hpp).
-  uint32_t excluded_tags = kTagFight;
+  /// mean to throw punches (SegmentTag bits, graph/motion_graph.hpp). Nor to shuffle half steps:
+  /// offered to players, they changed their closed-loop runs for the worse (docs/MOTION_QUALITY.md,
+  /// "A start that sets off"); fighters take them (server_fighters.cpp).
+  uint32_t excluded_tags = kTagFight | kTagFootwork;
   /// Steering mode (0: off, the paper's controller), applied by LookaheadAvatar while a direction
   /// is held: a playing locomotion segment is rotated about the avatar's root towards the command
   /// by at most this much per second (if the rotated segment is collision-free and leaves a way
