@@ -68,8 +68,8 @@ class Catalogue {
   void start_stop(const std::string& prefix, uint32_t tags, FamilyId standing, FamilyId gait,
                   int start_frames, int stop_frames, StepTiming start, float start_speed) {
     for (int side = 0; side < 2; ++side) {
-      step(prefix + "_start", tags, side, standing, gait, start_frames, 0.0f, start_speed, speed_of(gait),
-           start);
+      step(prefix + "_start", tags, side, standing, gait, start_frames, 0.0f, start_speed,
+           speed_of(gait), start);
       step(prefix + "_stop", tags, side, gait, standing, stop_frames, 0.0f, speed_of(gait), 0.0f);
     }
   }
@@ -167,8 +167,9 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   // to close a gap shorter than a walk's first step (one stopped 1.3 m from its target, whose
   // walk would touch it, side-stepped on the spot without it). Players' trees leave it out.
   for (int side = 0; side < 2; ++side) {
-    LocomotionSpec s = transition_spec(side == kLeft ? "step_forward_left" : "step_forward_right", loco | kTagFootwork,
-                                       idle, idle, frames_s(16), {vec2(0.0f, 0.20f), 0.0f}, g);
+    LocomotionSpec s = transition_spec(side == kLeft ? "step_forward_left" : "step_forward_right",
+                                       loco | kTagFootwork, idle, idle, frames_s(16),
+                                       {vec2(0.0f, 0.20f), 0.0f}, g);
     set_step(s, side, 0.0f, 0.07f, 0.17f);
     set_step(s, 1 - side, 0.12f, 0.15f, 0.25f);
     c.add(s);

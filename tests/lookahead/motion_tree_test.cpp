@@ -1,4 +1,5 @@
 #include "lookahead/motion_tree.hpp"
+#include "lookahead/lookahead_avatar.hpp"
 #include "support/segments.hpp"
 
 #include "library/foreign_capture.hpp"
@@ -54,6 +55,33 @@ TEST(MotionTree, SameInputAndBudgetGiveTheSameTreeBitForBit) {
     EXPECT_EQ(std::memcmp(na.data(), nb.data(), na.size() * sizeof(MotionTreeNode)), 0)
         << strategy_name(static_cast<Strategy>(s));
   }
+}
+
+// Players' trees leave the fighters' footwork (half steps forward) out; a tree that allows it
+// (the fighters') offers it from standing.
+TEST(MotionTree, FootworkIsLeftOutOfPlayersTreesByDefault) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  const int idle = find_fallback_segment(lib);
+  ASSERT_GE(idle, 0);
+  const auto footwork_nodes = [&](const MotionTreeConfig& config) {
+    MotionTree t(lib, arena.world, config);
+    t.reset(idle, kOpen);
+    t.set_command(vec2(0.0f, 1.0f), kOpen);
+    t.grow(GrowBudget::expansions(500));
+    int n = 0;
+    t.for_each_node([&](int, const MotionTreeNode& node) {
+      if (node.transition < 0) return;
+      const int segment = lib.graph.transitions[static_cast<size_t>(node.transition)].to;
+      if (lib.graph.segments[static_cast<size_t>(segment)].tags & kTagFootwork) ++n;
+    });
+    return n;
+  };
+  MotionTreeConfig players = config_for(Strategy::kCommand);
+  EXPECT_EQ(footwork_nodes(players), 0);
+  MotionTreeConfig fighters = players;
+  fighters.excluded_tags &= ~static_cast<uint32_t>(kTagFootwork);
+  EXPECT_GT(footwork_nodes(fighters), 0);
 }
 
 TEST(MotionTree, EveryNodeIsCollisionFreeAndPlacedAtItsParentsEnd) {
