@@ -64,6 +64,9 @@ struct MotionQualityBenchOptions {
   MotionSource motions;  ///< Default: the built-in library.
   int seeds = 10;
   double max_seconds = 120.0;
+  /// Moves every step block of the scene this far along z (a level nobody tuned for: the feet
+  /// meet the edges in another phase; docs/MOTION_QUALITY.md's stairs figures).
+  float shift_steps_m = 0.0f;
   bool json = false;
 };
 int bench_motion_quality(const MotionQualityBenchOptions& options);

@@ -6,7 +6,7 @@
 //   foresight-bench client [--avatars 1000] [--seconds 3] [--json]   (when foresight_client is built)
 //   foresight-bench fighter [--figure DIR] [--json]
 //   foresight-bench terrain [--seed 1] [--json]
-//   foresight-bench motion-quality [--scene maze] [--goal NAME] [--motions DIR] [--seeds 10] [--json]
+//   foresight-bench motion-quality [--scene maze] [--goal NAME] [--motions DIR] [--seeds 10] [--shift-steps M] [--json]
 //   foresight-bench snapshot [--avatars 1000] [--receivers 200] [--view 50] [--json]
 //   foresight-bench load-report out/loadtest/bots-*.txt [--out out/loadtest]
 #include "bench_commands.hpp"
@@ -96,6 +96,8 @@ int main(int argc, char** argv) {
   foresight::add_motion_source_options(*mq, quality.motions);
   mq->add_option("--seeds", quality.seeds, "Closed-loop player seeds per controller")->check(CLI::Range(1, 1000));
   mq->add_option("--max-seconds", quality.max_seconds, "Time cap of a run")->check(CLI::Range(1.0, 3600.0));
+  mq->add_option("--shift-steps", quality.shift_steps_m, "Move the scene's step blocks this far along z (m)")
+      ->check(CLI::Range(-10.0, 10.0));
   mq->add_flag("--json", quality.json, "Print one JSON object as the last line");
 
   SnapshotBenchOptions snapshot;

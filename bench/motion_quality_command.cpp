@@ -6,6 +6,7 @@
 #include "lab/lab_experiments.hpp"
 #include "lab/motion_quality.hpp"
 #include "library_build/library_source.hpp"
+#include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,13 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
     std::fprintf(stderr, "foresight-bench motion-quality: %s\n", error.c_str());
     return 1;
   }
+  if (o.shift_steps_m != 0.0f) {
+    for (StepBlock& step : scene.terrain.steps) step.min_m.z += o.shift_steps_m, step.max_m.z += o.shift_steps_m;
+    if (!collision_world_build(scene, world, error)) {
+      std::fprintf(stderr, "foresight-bench motion-quality: --shift-steps: %s\n", error.c_str());
+      return 1;
+    }
+  }
   lab::MotionQualityOptions options;
   options.seeds = o.seeds;
   options.max_seconds = o.max_seconds;
@@ -40,15 +48,17 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
     return 1;
   }
   print_machine_line();
-  std::printf("scene %s (goal %s), library %s, %d closed-loop player seeds per controller, pop threshold %.1f mm/frame^2\n",
-              scene.name.c_str(), o.goal.empty() ? scene.goals.front().name.c_str() : o.goal.c_str(), lib.name.c_str(),
-              o.seeds, 1000.0 * results.front().pop_threshold_m);
+  std::printf("scene %s (goal %s, steps moved %.2f m), library %s, %d closed-loop player seeds per controller, "
+              "pop threshold %.1f mm/frame^2\n",
+              scene.name.c_str(), o.goal.empty() ? scene.goals.front().name.c_str() : o.goal.c_str(),
+              static_cast<double>(o.shift_steps_m), lib.name.c_str(), o.seeds, 1000.0 * results.front().pop_threshold_m);
   std::fputs(lab::motion_quality_text(results).c_str(), stdout);
   if (o.json) {
     // Top level: the default controller (steering with the pose stage, the last row); every row
     // under "controllers"; then where it ran.
     nlohmann::json j = {{"bench", "motion-quality"}, {"scene", scene.name}, {"goal", o.goal}, {"library", lib.name},
-                        {"seeds", o.seeds},          {"controller", results.back().controller}};
+                        {"seeds", o.seeds},          {"controller", results.back().controller},
+                        {"shift_steps_m", o.shift_steps_m}};
     j.update(lab::motion_quality_json(results.back()));
     for (const lab::MotionQualityResult& r : results) {
       nlohmann::json row = lab::motion_quality_json(r);

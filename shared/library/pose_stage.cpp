@@ -36,6 +36,19 @@ void spring_towards(float& x, float& v, float target, float k, float dt) {
   v = (v - k * (v + k * d) * dt) * e;
 }
 
+// x towards target with its acceleration bounded by `accel`: at the rate that arrives in `in_s`
+// when that is within reach, never faster than it can brake from to arrive at rest, and never
+// past the target.
+void seek(float& x, float& v, float target, float in_s, float accel, float dt) {
+  // The fastest rate it can still brake from within d, a frame's braking at a time.
+  const float d = target - x, step = 0.5f * accel * dt;
+  const float brake = std::sqrt(2.0f * accel * std::abs(d) + step * step) - step;
+  const float want = std::clamp(d / std::max(in_s, dt), -brake, brake);
+  v += std::clamp(want - v, -accel * dt, accel * dt);
+  if ((target - (x + v * dt)) * d <= 0.0f) x = target, v = 0.0f;
+  else x += v * dt;
+}
+
 // Orientation warping: how much of a canonical joint's turn lag is the upper body's spring's (the
 // rest the lower body's): none for the pelvis and legs, growing up the spine, all of it from the
 // chest up (arms and head included).
@@ -295,23 +308,47 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
   }
   const float body_target = std::min(target[0], target[1]);
   if (!has_ground_) {
-    for (int foot = 0; foot < 2; ++foot) foot_y_[foot] = target[foot], foot_vy_[foot] = 0.0f;
+    for (int foot = 0; foot < 2; ++foot) {
+      foot_y_[foot] = target[foot], foot_vy_[foot] = 0.0f;
+      late_[foot] = false;
+    }
     body_y_ = body_target;
     body_vy_ = 0.0f;
     has_ground_ = true;
   } else {
     for (int foot = 0; foot < 2; ++foot) {
-      // A planted foot a little off its ground (it landed where the swing did not expect) is put
-      // on it: a few cm in one frame is a smaller acceleration than a landing's own.
-      if (planted_now[foot] && std::abs(target[foot] - foot_y_[foot]) <= config_.planted_snap_m) {
-        foot_y_[foot] = target[foot];
-        foot_vy_[foot] = 0.0f;
+      float& y = foot_y_[foot];
+      float& vy = foot_vy_[foot];
+      if (planted_now[foot] && !late_[foot] && std::abs(target[foot] - y) <= config_.planted_snap_m) {
+        // A planted foot a little off its ground (it landed where the swing did not expect) is
+        // put on it: a few cm in one frame is a smaller acceleration than a landing's own.
+        y = target[foot];
+        vy = 0.0f;
+      } else if (planted_now[foot]) {
+        // The clip plants a foot that is not down yet (a step up or down found too late to take
+        // in the air: steering turned the landing across an edge in the swing's last frames): it
+        // goes on to the ground at the bounded acceleration and lands late, not planted (neither
+        // held nor counted on the ground) until it is there.
+        seek(y, vy, target[foot], 0.0f, config_.max_foot_ground_accel_mps2, dt_s);
+        late_[foot] = std::abs(target[foot] - y) > kLanded_m;
+        if (late_[foot]) contact_ &= static_cast<uint8_t>(~(foot_heel_bit(foot) | foot_ball_bit(foot)));
+        else y = target[foot], vy = 0.0f;
       } else if (landing_in_s[foot] > 0.0f) {
-        // In the air: at the rate that arrives when it lands (asked again every frame).
-        foot_vy_[foot] = (target[foot] - foot_y_[foot]) / std::max(landing_in_s[foot], dt_s);
-        foot_y_[foot] += foot_vy_[foot] * dt_s;
+        // In the air: at the rate that arrives when it lands (asked again every frame). Raised
+        // with its acceleration bounded (a step up that steering turned the landing onto late is
+        // reached late, above, not popped to); lowered at that rate at once (a step down waits for
+        // the edge, and the body, never above the lower foot, follows it down: measured, a
+        // bounded start there bent the standing knee faster).
+        late_[foot] = false;
+        if (target[foot] < y) {
+          vy = (target[foot] - y) / std::max(landing_in_s[foot], dt_s);
+          y += vy * dt_s;
+        } else {
+          seek(y, vy, target[foot], landing_in_s[foot], config_.max_foot_ground_accel_mps2, dt_s);
+        }
       } else {
-        spring_towards(foot_y_[foot], foot_vy_[foot], target[foot], config_.foot_ground_stiffness, dt_s);
+        late_[foot] = false;
+        spring_towards(y, vy, target[foot], config_.foot_ground_stiffness, dt_s);
       }
     }
     spring_towards(body_y_, body_vy_, body_target, config_.body_ground_stiffness, dt_s);
@@ -333,8 +370,14 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
       if (!height_at(foot, part, g)) break;
       const vec3 parent = shown_[part - 1];
       const float length = glm::length(shown_[part] - parent);
-      const float rise = std::clamp(g - from, planted ? -0.5f * length : 0.0f, 0.5f * length);
+      float rise = std::clamp(g - from, planted ? -0.5f * length : 0.0f, 0.5f * length);
       from = g;
+      // A swinging foot's front is lifted at the bounded acceleration (a step's edge passing under
+      // it does not flick it up in a frame); a planted one is pitched to its ground at once.
+      float& lift = front_lift_[foot][part - ankle - 1];
+      float& lift_v = front_lift_v_[foot][part - ankle - 1];
+      if (planted) lift = rise, lift_v = 0.0f;
+      else seek(lift, lift_v, rise, 0.0f, config_.max_foot_ground_accel_mps2, dt_s), rise = lift;
       if (length < 1e-4f || std::abs(rise) < 1e-5f) continue;
       const vec3 raised = shown_[part] + vec3(0.0f, rise, 0.0f) - parent;
       const vec3 delta = parent + raised * (length / glm::length(raised)) - shown_[part];
