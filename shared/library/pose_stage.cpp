@@ -319,18 +319,20 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
     for (int foot = 0; foot < 2; ++foot) {
       float& y = foot_y_[foot];
       float& vy = foot_vy_[foot];
-      if (planted_now[foot] && !late_[foot] && std::abs(target[foot] - y) <= config_.planted_snap_m) {
+      if (planted_now[foot] && !late_[foot] && std::abs(target[foot] - y) <= config_.planted_snap_m &&
+          std::abs(vy) * dt_s <= kLanded_m) {
         // A planted foot a little off its ground (it landed where the swing did not expect) is
-        // put on it: a few cm in one frame is a smaller acceleration than a landing's own.
+        // put on it: a few cm in one frame is a smaller acceleration than a landing's own. (Not
+        // one still climbing fast: stopping it dead would be a pop; it lands late, below.)
         y = target[foot];
         vy = 0.0f;
       } else if (planted_now[foot]) {
         // The clip plants a foot that is not down yet (a step up or down found too late to take
         // in the air: steering turned the landing across an edge in the swing's last frames): it
         // goes on to the ground at the bounded acceleration and lands late, not planted (neither
-        // held nor counted on the ground) until it is there.
+        // held nor counted on the ground) until it is there and has come to rest.
         seek(y, vy, target[foot], 0.0f, config_.max_foot_ground_accel_mps2, dt_s);
-        late_[foot] = std::abs(target[foot] - y) > kLanded_m;
+        late_[foot] = std::abs(target[foot] - y) > kLanded_m || std::abs(vy) * dt_s > kLanded_m;  // down, at rest
         if (late_[foot]) contact_ &= static_cast<uint8_t>(~(foot_heel_bit(foot) | foot_ball_bit(foot)));
         else y = target[foot], vy = 0.0f;
       } else if (landing_in_s[foot] > 0.0f) {

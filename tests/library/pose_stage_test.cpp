@@ -529,6 +529,67 @@ TEST(PoseStage, ABallPastAStepEdgeHangsAndOnlyTheHeelIsPlanted) {
   EXPECT_NEAR(glm::length(shown[b] - shown[h]), glm::length(animated[b] - animated[h]), 1e-3f);
 }
 
+// A step up found two frames before a swinging foot lands (as when steering turns the landing
+// onto a step at the last moment: the stage sees only the ground under the landing change) is
+// climbed at the bounded acceleration and landed late: the foot's height never accelerates by
+// more than 40 mm/frame^2 (an 18 cm climb in the 2 frames left needs 180, over the library's pop
+// threshold), and the foot is not counted on the ground until it is within 1 cm of it; then it
+// is planted on the step. (Before, it jumped 9 cm in a frame: a knee at 157 mm/frame^2.)
+TEST(PoseStage, AStepUpFoundLateIsClimbedAtTheBoundedRateAndLandedLate) {
+  const MotionLibrary& lib = library();
+  // The first segment that lands a foot after a swing of at least 4 frames within itself (a
+  // walk step lands on its successor's first frame): which segment, foot and frame.
+  int walk = -1, foot = -1, landing = -1;
+  for (int g = 0; g < static_cast<int>(lib.graph.segments.size()) && walk < 0; ++g) {
+    const Segment& candidate = lib.graph.segments[static_cast<size_t>(g)];
+    for (int k = 0; k < 2 && walk < 0; ++k) {
+      const uint8_t bits = foot_heel_bit(k) | foot_ball_bit(k);
+      int swing = 0;
+      for (int f = 0; f < candidate.num_frames() && walk < 0; ++f) {
+        const bool down = lib.foot_contact_at(candidate.clip, candidate.first_frame + f) & bits;
+        if (down && swing >= 4 && f >= 4) walk = g, foot = k, landing = f;
+        swing = down ? 0 : swing + 1;
+      }
+    }
+  }
+  ASSERT_GE(walk, 0) << "a segment lands a foot within itself";
+  const Segment& seg = lib.graph.segments[static_cast<size_t>(walk)];
+  const auto ankle = static_cast<size_t>(foot_heel_joint(foot));
+  const uint8_t bits = foot_heel_bit(foot) | foot_ball_bit(foot);
+  Terrain flat;  // the floor; and an 18 cm step under the whole landing foot, found late
+  Terrain stepped;
+  PoseStage probe(lib);
+  PlaybackState s{walk, landing, Placement{}, -1};
+  const vec3 lands_at = probe.update(s, 0.0f)[ankle];
+  stepped.steps.push_back({"step", vec3(lands_at.x - 0.08f, 0.0f, lands_at.z - 0.15f), vec3(lands_at.x + 0.08f, 0.18f, lands_at.z + 0.4f)});
+  PoseStage stage(lib);
+  stage.set_ground(&flat);
+  s.frame = 0;
+  stage.update(s, 0.0f);
+  float lift[3] = {0.0f, 0.0f, 0.0f};  // the foot's height over its clip's, the last three frames
+  bool landed = false;
+  for (int f = 1; f < seg.num_frames(); ++f) {
+    if (f == landing - 2) stage.set_ground(&stepped);
+    s.frame = f;
+    stage.update(s, 1.0f / 30.0f);
+    lift[0] = lift[1], lift[1] = lift[2], lift[2] = stage.shown()[ankle].y - stage.animated()[ankle].y;
+    if (f >= landing - 1) {
+      SCOPED_TRACE(f);
+      EXPECT_LT(std::abs(lift[2] - 2.0f * lift[1] + lift[0]), 0.045f) << "the climb's acceleration bounded";
+      const bool planted = (stage.contact() & bits) != 0;
+      if (planted) {
+        EXPECT_NEAR(lift[2], 0.18f, 0.011f) << "counted on the ground only once on the step";
+      }
+      if (f == landing) {
+        EXPECT_FALSE(planted) << "the clip plants it now: it is still climbing";
+      }
+      landed = landed || planted;
+    }
+  }
+  EXPECT_TRUE(landed) << "planted on the step before the segment ends";
+  EXPECT_NEAR(lift[2], 0.18f, 0.011f);
+}
+
 // The ground is read where a locked foot is shown: the body drifts 5 cm forwards (less than a
 // lock lets go at), so the clip's left ball moves over a step's edge while the lock keeps the
 // foot on the floor. The ball stays on the floor, not pitched up towards the step it is not on.
