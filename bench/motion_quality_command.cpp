@@ -51,7 +51,8 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
   std::printf("scene %s (goal %s, steps moved %.2f m), library %s, %d closed-loop player seeds per controller, "
               "pop threshold %.1f mm/frame^2\n",
               scene.name.c_str(), o.goal.empty() ? scene.goals.front().name.c_str() : o.goal.c_str(),
-              static_cast<double>(o.shift_steps_m), lib.name.c_str(), o.seeds, 1000.0 * results.front().pop_threshold_m);
+              static_cast<double>(o.shift_steps_m), lib.name.c_str(), o.seeds,
+              1000.0 * results.front().pop_threshold_m);
   std::fputs(lab::motion_quality_text(results).c_str(), stdout);
   if (o.json) {
     // Top level: the default controller (steering with the pose stage, the last row); every row

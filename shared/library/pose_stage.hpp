@@ -34,10 +34,11 @@
 //     A foot is raised, and a swinging foot's front lifted over ground rising under it, with the
 //     acceleration bounded (`max_foot_ground_accel_mps2`): a step up found in the swing's last
 //     frames (steering turned the landing onto it) is reached late, the foot not planted until it
-//     is within 1 cm of its ground, instead of popping up. A planted part on or just past a step's
-//     edge (its contact patch, a few cm, reaching both sides) rests on the side nearest the foot's
-//     height, the foot nudged off the edge; a planted part that is then shown more than 2 cm over the ground under it (a heel or ball hanging past
-//     the edge the other part stands behind) hangs: not planted; a planted foot a few cm off its
+//     is within 1 cm of its ground and at rest, instead of popping up. A planted part on or just
+//     past a step's edge (its contact patch, a few cm, reaching both sides) rests on the side
+//     nearest the foot's height, the foot nudged off the edge; a planted part that is then shown
+//     more than 2 cm over the ground under it (a heel or ball hanging past the edge the other
+//     part stands behind) hangs: not planted; a planted foot a few cm off its
 //     ground is put on it. Otherwise the heights follow their targets through critically damped
 //     springs, the body's slower than the feet's. A hole under a foot keeps its last height.
 //  5. Foot locking. While the clip plants a foot (foot_contact.hpp: heel or ball), that part keeps

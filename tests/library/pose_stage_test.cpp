@@ -561,7 +561,8 @@ TEST(PoseStage, AStepUpFoundLateIsClimbedAtTheBoundedRateAndLandedLate) {
   PoseStage probe(lib);
   PlaybackState s{walk, landing, Placement{}, -1};
   const vec3 lands_at = probe.update(s, 0.0f)[ankle];
-  stepped.steps.push_back({"step", vec3(lands_at.x - 0.08f, 0.0f, lands_at.z - 0.15f), vec3(lands_at.x + 0.08f, 0.18f, lands_at.z + 0.4f)});
+  stepped.steps.push_back(
+      {"step", vec3(lands_at.x - 0.08f, 0.0f, lands_at.z - 0.15f), vec3(lands_at.x + 0.08f, 0.18f, lands_at.z + 0.4f)});
   PoseStage stage(lib);
   stage.set_ground(&flat);
   s.frame = 0;
