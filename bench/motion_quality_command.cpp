@@ -6,7 +6,6 @@
 #include "lab/lab_experiments.hpp"
 #include "lab/motion_quality.hpp"
 #include "library_build/library_source.hpp"
-#include "world/collision_world.hpp"
 #include "world/data_paths.hpp"
 
 #include <nlohmann/json.hpp>
@@ -30,12 +29,9 @@ int bench_motion_quality(const MotionQualityBenchOptions& o) {
     std::fprintf(stderr, "foresight-bench motion-quality: %s\n", error.c_str());
     return 1;
   }
-  if (o.shift_steps_m != 0.0f) {
-    for (StepBlock& step : scene.terrain.steps) step.min_m.z += o.shift_steps_m, step.max_m.z += o.shift_steps_m;
-    if (!collision_world_build(scene, world, error)) {
-      std::fprintf(stderr, "foresight-bench motion-quality: --shift-steps: %s\n", error.c_str());
-      return 1;
-    }
+  if (o.shift_steps_m != 0.0f && !lab::shift_steps(scene, world, o.shift_steps_m, error)) {
+    std::fprintf(stderr, "foresight-bench motion-quality: --shift-steps: %s\n", error.c_str());
+    return 1;
   }
   lab::MotionQualityOptions options;
   options.seeds = o.seeds;

@@ -133,6 +133,11 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
 
 }  // namespace
 
+bool shift_steps(Scene& scene, CollisionWorld& world, float dz_m, std::string& error) {
+  for (StepBlock& step : scene.terrain.steps) step.min_m.z += dz_m, step.max_m.z += dz_m;
+  return collision_world_build(scene, world, error);
+}
+
 std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_per_s) {
   MotionTreeConfig paper;
   MotionTreeConfig steered;

@@ -42,6 +42,11 @@ struct MotionQualityController {
 /// The paper's controller, steering without the pose stage, steering with it (the default).
 std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_per_s);
 
+/// Moves every step block of `scene` `dz_m` along z and rebuilds `world` from it: a level nobody
+/// tuned the stage for (the feet meet the edges in another phase). False with `error` when the
+/// world cannot be built.
+bool shift_steps(Scene& scene, CollisionWorld& world, float dz_m, std::string& error);
+
 struct MotionQualityOptions {
   int seeds = 10;
   std::string goal;  ///< The scene's goal by name; empty: its first.

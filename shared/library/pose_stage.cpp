@@ -308,10 +308,7 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
   }
   const float body_target = std::min(target[0], target[1]);
   if (!has_ground_) {
-    for (int foot = 0; foot < 2; ++foot) {
-      foot_y_[foot] = target[foot], foot_vy_[foot] = 0.0f;
-      late_[foot] = false;
-    }
+    for (int foot = 0; foot < 2; ++foot) foot_y_[foot] = target[foot], foot_vy_[foot] = 0.0f;
     body_y_ = body_target;
     body_vy_ = 0.0f;
     has_ground_ = true;
@@ -319,8 +316,8 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
     for (int foot = 0; foot < 2; ++foot) {
       float& y = foot_y_[foot];
       float& vy = foot_vy_[foot];
-      if (planted_now[foot] && !late_[foot] && std::abs(target[foot] - y) <= config_.planted_snap_m &&
-          std::abs(vy) * dt_s <= kLanded_m) {
+      const bool at_rest = std::abs(vy) * dt_s <= kLanded_m;
+      if (planted_now[foot] && at_rest && std::abs(target[foot] - y) <= config_.planted_snap_m) {
         // A planted foot a little off its ground (it landed where the swing did not expect) is
         // put on it: a few cm in one frame is a smaller acceleration than a landing's own. (Not
         // one still climbing fast: stopping it dead would be a pop; it lands late, below.)
@@ -332,16 +329,15 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
         // goes on to the ground at the bounded acceleration and lands late, not planted (neither
         // held nor counted on the ground) until it is there and has come to rest.
         seek(y, vy, target[foot], 0.0f, config_.max_foot_ground_accel_mps2, dt_s);
-        late_[foot] = std::abs(target[foot] - y) > kLanded_m || std::abs(vy) * dt_s > kLanded_m;  // down, at rest
-        if (late_[foot]) contact_ &= static_cast<uint8_t>(~(foot_heel_bit(foot) | foot_ball_bit(foot)));
-        else y = target[foot], vy = 0.0f;
+        const bool down_at_rest = std::abs(target[foot] - y) <= kLanded_m && std::abs(vy) * dt_s <= kLanded_m;
+        if (down_at_rest) y = target[foot], vy = 0.0f;
+        else contact_ &= static_cast<uint8_t>(~(foot_heel_bit(foot) | foot_ball_bit(foot)));
       } else if (landing_in_s[foot] > 0.0f) {
         // In the air: at the rate that arrives when it lands (asked again every frame). Raised
         // with its acceleration bounded (a step up that steering turned the landing onto late is
         // reached late, above, not popped to); lowered at that rate at once (a step down waits for
         // the edge, and the body, never above the lower foot, follows it down: measured, a
         // bounded start there bent the standing knee faster).
-        late_[foot] = false;
         if (target[foot] < y) {
           vy = (target[foot] - y) / std::max(landing_in_s[foot], dt_s);
           y += vy * dt_s;
@@ -349,7 +345,6 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
           seek(y, vy, target[foot], landing_in_s[foot], config_.max_foot_ground_accel_mps2, dt_s);
         }
       } else {
-        late_[foot] = false;
         spring_towards(y, vy, target[foot], config_.foot_ground_stiffness, dt_s);
       }
     }

@@ -166,7 +166,6 @@ class PoseStage {
   bool has_ground_ = false;  ///< The ground heights below have been taken.
   float body_y_ = 0.0f, body_vy_ = 0.0f;        ///< The body's shown height offset and its rate.
   float foot_y_[2] = {0, 0}, foot_vy_[2] = {0, 0};  ///< Each foot's, before the body's.
-  bool late_[2] = {false, false};  ///< Planted by the clip, still going to its ground (landing late).
   float front_lift_[2][2] = {}, front_lift_v_[2][2] = {};  ///< Each foot's ball and toe pitch rise (m) and its rate.
   vec2 foothold_nudge_[2] = {vec2(0.0f), vec2(0.0f)};  ///< This frame's move of a planted part off a step's edge.
   vec2 swing_nudge_[2] = {vec2(0.0f), vec2(0.0f)};  ///< A swinging foot's way towards its landing's nudge.

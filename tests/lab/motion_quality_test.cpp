@@ -96,8 +96,7 @@ TEST(MotionQuality, UpTheStairsEveryPlantedFootIsOnTheGroundWhereverTheEdgesAre)
     std::string error;
     ASSERT_TRUE(scene_world_load("terrain", scene, world, error)) << error;
     ASSERT_EQ(scene.terrain.steps.size(), 2u);
-    for (StepBlock& step : scene.terrain.steps) step.min_m.z += shift_m, step.max_m.z += shift_m;
-    ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+    ASSERT_TRUE(shift_steps(scene, world, shift_m, error)) << error;
     MotionQualityOptions options;
     options.seeds = 5;
     options.goal = "stairs-top";

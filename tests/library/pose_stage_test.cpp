@@ -535,10 +535,10 @@ TEST(PoseStage, ABallPastAStepEdgeHangsAndOnlyTheHeelIsPlanted) {
 // more than 40 mm/frame^2 (an 18 cm climb in the 2 frames left needs 180, over the library's pop
 // threshold), and the foot is not counted on the ground until it is within 1 cm of it; then it
 // is planted on the step. (Before, it jumped 9 cm in a frame: a knee at 157 mm/frame^2.)
-TEST(PoseStage, AStepUpFoundLateIsClimbedAtTheBoundedRateAndLandedLate) {
-  const MotionLibrary& lib = library();
-  // The first segment that lands a foot after a swing of at least 4 frames within itself (a
-  // walk step lands on its successor's first frame): which segment, foot and frame.
+void expect_a_late_step_up_climbed_and_landed_late(const MotionLibrary& lib) {
+  // The first segment that lands a foot after a swing of at least 4 frames within itself, 3
+  // frames before its end at least (a walk step lands on its successor's first frame): which
+  // segment, foot and frame.
   int walk = -1, foot = -1, landing = -1;
   for (int g = 0; g < static_cast<int>(lib.graph.segments.size()) && walk < 0; ++g) {
     const Segment& candidate = lib.graph.segments[static_cast<size_t>(g)];
@@ -547,7 +547,7 @@ TEST(PoseStage, AStepUpFoundLateIsClimbedAtTheBoundedRateAndLandedLate) {
       int swing = 0;
       for (int f = 0; f < candidate.num_frames() && walk < 0; ++f) {
         const bool down = lib.foot_contact_at(candidate.clip, candidate.first_frame + f) & bits;
-        if (down && swing >= 4 && f >= 4) walk = g, foot = k, landing = f;
+        if (down && swing >= 4 && f >= 4 && f + 3 < candidate.num_frames()) walk = g, foot = k, landing = f;
         swing = down ? 0 : swing + 1;
       }
     }
@@ -589,6 +589,18 @@ TEST(PoseStage, AStepUpFoundLateIsClimbedAtTheBoundedRateAndLandedLate) {
   }
   EXPECT_TRUE(landed) << "planted on the step before the segment ends";
   EXPECT_NEAR(lift[2], 0.18f, 0.011f);
+}
+
+TEST(PoseStage, AStepUpFoundLateIsClimbedAtTheBoundedRateAndLandedLate) {
+  expect_a_late_step_up_climbed_and_landed_late(library());
+}
+
+// The same on capture the team did not make (the Bandai walk in inches under a dummy root).
+TEST(PoseStage, OnACaptureOfAnotherUnitAndRootAStepUpFoundLateIsLandedLate) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_walk_library("", lib));
+  expect_a_late_step_up_climbed_and_landed_late(lib);
 }
 
 // The ground is read where a locked foot is shown: the body drifts 5 cm forwards (less than a
