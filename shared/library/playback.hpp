@@ -36,11 +36,21 @@ inline Placement playback_root(const MotionLibrary& lib, const PlaybackState& s)
   return motion_library_root_at(lib, s.segment, s.frame, s.segment_start);
 }
 
-/// The playing segment's start turned by `turn` (rad) about where the root stands now: root
+/// Where root steering turns the motion about: where the root stood on the frame shown before
+/// this one (the segment's first frame: where it stands). Steering runs after the frame has
+/// advanced, so turning about that point sends this frame's own step the new way: the command
+/// moves the avatar on the frame it arrives, not one frame later.
+inline vec2 playback_steer_pivot(const MotionLibrary& lib, const PlaybackState& s) {
+  PlaybackState before = s;
+  before.frame = s.frame > 0 ? s.frame - 1 : 0;
+  return playback_root(lib, before).pos_m;
+}
+
+/// The playing segment's start turned by `turn` (rad) about playback_steer_pivot: root
 /// steering's rotation of the motion (LookaheadAvatar), the segment playing on from there.
 inline Placement playback_turned_start(const MotionLibrary& lib, const PlaybackState& s, float turn) {
-  const Placement now = playback_root(lib, s);
-  return {now.pos_m + rotate_ground(s.segment_start.pos_m - now.pos_m, turn), s.segment_start.heading_rad + turn};
+  const vec2 pivot = playback_steer_pivot(lib, s);
+  return {pivot + rotate_ground(s.segment_start.pos_m - pivot, turn), s.segment_start.heading_rad + turn};
 }
 
 /// The current pose (pelvis in world space).

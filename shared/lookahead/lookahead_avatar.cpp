@@ -150,10 +150,25 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   // a corridor's axis was steered to at every sway and walked the avatar into the wall, where the
   // clips alone walk straight down the middle. So whether to steer is decided on the heading the
   // segment means to have (intended_heading); how far, on the root's.
-  if (std::abs(wrap_angle(want - intended_heading())) < kWalkingDeadZone_rad) return false;
-  const float error = wrap_angle(want - now.heading_rad);
-  return rotate_playing(std::clamp(error, -frame_turn(tree_.config().steer_rad_per_s), frame_turn(tree_.config().steer_rad_per_s)),
-                        veto, true);
+  // But a turning clip's body faces 15-20 deg ahead of its path: once its heading was within the
+  // dead zone the path was still about 30 deg off the key for 3-4 frames (most of the maze's slow
+  // 90 deg turns). So the way the root goes over the next kSteerAheadFrames (a few frames' way
+  // averages the stride's sway out) is steered onto the key too while it is kWayOff_rad or more
+  // off. Steering on that way alone, with no heading rule, broke corridors, the stairs and
+  // wedge recovery (tests Recovery.*Wedged, MotionQuality.UpTheStairs*, Lab.QuickClosedLoop*).
+  const int ahead = std::min(playback_.frame + kSteerAheadFrames, seg.num_frames());
+  const vec2 way = motion_library_root_at(library_, playback_.segment, ahead, playback_.segment_start).pos_m - now.pos_m;
+  const bool going = glm::dot(way, way) > kSteerAheadMin_m * kSteerAheadMin_m;
+  const float way_error = going ? wrap_angle(want - std::atan2(way.x, way.y)) : 0.0f;
+  const bool way_off = std::abs(way_error) >= kWayOff_rad;
+  if (!way_off && std::abs(wrap_angle(want - intended_heading())) < kWalkingDeadZone_rad) return false;
+  const float error = way_off ? way_error : wrap_angle(want - now.heading_rad);
+  // The heading rule turning against a way already near the key (the body faces past the key
+  // while the path comes round to it) would turn the path away again, and the way rule back on
+  // the next frame: left alone, the clip's own turn brings both round.
+  if (!way_off && error * way_error < 0.0f && std::abs(way_error) > kWayNearKey_rad) return false;
+  const float step = frame_turn(tree_.config().steer_rad_per_s);
+  return rotate_playing(std::clamp(error, -step, step), veto, true);
 }
 
 // The playing segment's heading with its gait sway taken out: from its start's to its end's,
@@ -267,6 +282,9 @@ bool LookaheadAvatar::may_end_early() const {
 // A child is a trap when it moves the avatar somewhere from which, as far as the tree has looked
 // (every node of the branch expanded, or at the depth cap), it can only stand still: a pocket of
 // the scene where no motion but a standing loop fits. Taken, the avatar stands there for ever.
+// A dead end (a node expanded with no feasible successor, not even a standing loop) leads nowhere
+// either, and is worse: the avatar freezes on its last frame where not even idle fits (obstacles
+// seed 1 froze for 100 s at the end of slow_to_walk_l, whose both successors were dead ends).
 void LookaheadAvatar::find_traps() {
   traps_.clear();
   thread_local std::vector<int> visit;  // the thread's scratch stack (capacity kept)
@@ -280,7 +298,9 @@ void LookaheadAvatar::find_traps() {
       const int i = visit.back();
       visit.pop_back();
       const MotionTreeNode& n = t.node(i);
-      if ((i != c && !is_standing_loop(t.segment_of(i))) || (!n.expanded && n.depth < t.config().max_depth)) trap = false;
+      const bool dead_end = n.expanded && n.first_child < 0;
+      if ((i != c && !dead_end && !is_standing_loop(t.segment_of(i))) || (!n.expanded && n.depth < t.config().max_depth))
+        trap = false;
       for (int k = n.first_child; k >= 0; k = t.node(k).next_sibling) visit.push_back(k);
     }
     if (trap) traps_.push_back(t.segment_of(c));

@@ -43,6 +43,14 @@ class LookaheadAvatar {
   static constexpr float kProbeSpread_rad = 0.7f;  // 40 deg
   static constexpr float kSameCommandCos = 0.7f;   // within 45 deg: the same key
   static constexpr float kStandingTurn_rad_per_s = 3.14f;  // 180 deg/s, a brisk turn on the spot
+  // Steering (steer()): the way the root goes is from where it stands to where the playing
+  // segment takes it kSteerAheadFrames on (less than kSteerAheadMin_m: going nowhere, and only
+  // the heading decides); a way kWayOff_rad or more off the key is steered onto it, and a way
+  // within it but more than kWayNearKey_rad off is not steered away from the key by the heading.
+  static constexpr int kSteerAheadFrames = 4;       // 0.13 s at 30 fps: averages a stride's sway out
+  static constexpr float kSteerAheadMin_m = 0.05f;
+  static constexpr float kWayOff_rad = 0.44f;       // 25 deg
+  static constexpr float kWayNearKey_rad = 0.09f;   // 5 deg
 
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,

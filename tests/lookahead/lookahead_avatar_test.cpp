@@ -139,6 +139,83 @@ TEST(LookaheadAvatar, RootSteeringFollowsARightAngleTurnSooner) {
   EXPECT_LT(steered, paper * 3 / 4) << "steered " << steered << " frames in all, the paper's controller " << paper;
 }
 
+// Steering runs after the frame has advanced; it turns the motion about where the root stood on
+// the frame before, so the step of the very frame the key turns already goes the new way. (Turned
+// about where the root stands after the step, the step stayed the old way: a frame of latency on
+// every response.)
+TEST(LookaheadAvatar, SteeringTurnsTheStepOfTheFrameTheKeyTurns) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTreeConfig config;
+  config.steer_rad_per_s = radians(540.0f);
+  int steered = 0;
+  for (int walk = 60; walk < 90; walk += 2) {  // the change comes at different points of a step
+    LookaheadAvatar avatar(lib, arena.world, config, test::idle_segment(lib), Placement{vec2(0, -6), 0.0f});
+    ControlInput ahead;
+    ahead.camera_dir = vec2(0, 1);  // +Z
+    run(avatar, lib, arena.world, ahead, walk - 1, 300);
+    const vec2 earlier = avatar.root().pos_m;
+    run(avatar, lib, arena.world, ahead, 1, 300);
+    const vec2 before = avatar.root().pos_m;
+    ControlInput left = ahead;
+    left.camera_dir = vec2(-1, 0);  // the camera's left: +X (camera yaw 0)
+    avatar.set_input(left);
+    avatar.grow(GrowBudget::expansions(300));
+    const int segment = avatar.playback().segment;
+    const AvatarStepResult r = avatar.step();
+    if (!r.steered || avatar.playback().segment != segment) continue;  // a segment's end decides instead
+    ++steered;
+    // This frame's step against the frame's before (the stride's sway turns it a degree or two).
+    const vec2 step = avatar.root().pos_m - before, last = before - earlier;
+    ASSERT_GT(glm::length(last), 0.005f) << "walk " << walk;
+    const float turned = wrap_angle(std::atan2(step.x, step.y) - std::atan2(last.x, last.y));  // +X: +90 deg
+    EXPECT_GT(turned, radians(9.0f)) << "walk " << walk << ": this frame's step turned " << degrees(turned)
+                                     << " deg; the key turned 90 deg and steering turns 18 deg a frame";
+  }
+  EXPECT_GE(steered, 5);
+}
+
+// A turning clip's body faces 15-20 deg ahead of its path: steering that stopped once the body
+// faced the key left the path some 30 deg off it for a few more frames. Whenever a moving avatar
+// is left unsteered with a key held, the way its root goes over the next frames is within 25 deg
+// of the key (kWayOff_rad), wherever in a step the key turns and by however much.
+TEST(LookaheadAvatar, SteeringLeavesThePathOnTheKeyNotOnlyTheBody) {
+  const auto& lib = default_library();
+  const auto& arena = loaded_scene("arena");
+  MotionTreeConfig config;
+  config.steer_rad_per_s = radians(540.0f);
+  int unsteered = 0, off = 0;
+  for (const float key_deg : {45.0f, 90.0f, 135.0f, -45.0f, -90.0f, -135.0f})
+    for (int walk = 60; walk < 80; walk += 4) {
+      LookaheadAvatar avatar(lib, arena.world, config, test::idle_segment(lib), Placement{vec2(0, -6), 0.0f});
+      ControlInput in;
+      in.camera_dir = vec2(0, 1);  // +Z
+      run(avatar, lib, arena.world, in, walk, 300);
+      const float key = radians(key_deg);
+      in.camera_dir = vec2(-std::sin(key), std::cos(key));  // camera yaw 0: the world direction (sin, cos)
+      for (int f = 0; f < 30; ++f) {
+        avatar.set_input(in);
+        avatar.grow(GrowBudget::expansions(300));
+        const AvatarStepResult r = avatar.step();
+        const PlaybackState& p = avatar.playback();
+        const Segment& seg = lib.graph.segments[static_cast<size_t>(p.segment)];
+        if (r.steered || r.segment_changed || !(seg.tags & kTagLocomotion)) continue;
+        const int ahead = std::min(p.frame + LookaheadAvatar::kSteerAheadFrames, seg.num_frames());
+        const vec2 way = motion_library_root_at(lib, p.segment, ahead, p.segment_start).pos_m - avatar.root().pos_m;
+        if (glm::length(way) < LookaheadAvatar::kSteerAheadMin_m) continue;
+        ++unsteered;
+        const float error = wrap_angle(key - std::atan2(way.x, way.y));
+        if (std::abs(error) >= LookaheadAvatar::kWayOff_rad) {
+          ++off;
+          ADD_FAILURE() << "key " << key_deg << " deg after " << walk << " frames, frame " << f << ": " << seg.name
+                        << " left unsteered going " << degrees(error) << " deg off the key";
+        }
+      }
+    }
+  EXPECT_GT(unsteered, 100);
+  EXPECT_EQ(off, 0);
+}
+
 TEST(LookaheadAvatar, RootSteeringNeverEntersAWall) {
   const auto& lib = default_library();
   const auto& maze = loaded_scene("maze");
@@ -279,6 +356,9 @@ TEST(LookaheadAvatar, SteeringKeepsWalkingWhileACommandIsHeld) {
 // ones that ended standing in a corner for ever: obstacles seed 77 without the trap rule (a turn
 // on the spot into a pocket where only standing fits), maze seed 195 with a rotation that only
 // had to leave one segment's way on (a step steered so that only a stop into a corner followed).
+// Obstacles seed 1 froze for 100 s on the last frame of slow_to_walk_l once steering also turned
+// the path onto the key: both its successors were dead ends (nothing feasible after them, not
+// even idle), which find_traps did not count as traps.
 TEST(LookaheadAvatar, SteeringReachesTheGoalWithoutCorneringItself) {
   const auto& lib = default_library();
   struct Run {
