@@ -81,6 +81,22 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
     turn_share_[j] = config_.orientation_warping && canonical ? upper_body_share(static_cast<int>(j)) : 1.0f;
 }
 
+// Everything carried from frame to frame: before, only the previous frame and the ground were
+// forgotten, so a jump's decaying offset, a turn's lag and the foot locks went on pulling the
+// next pose towards where the avatar had been (0.8 m: test AfterResetItShowsWhatANewStageWould).
+void PoseStage::reset() {
+  has_previous_ = has_ground_ = false;
+  turn_lag_[0] = turn_lag_[1] = TurnLag{};
+  offset_left_s_ = 0.0f;
+  for (FootLock& f : feet_) f = FootLock{};
+  body_y_ = body_vy_ = 0.0f;
+  for (int foot = 0; foot < 2; ++foot) {
+    foot_y_[foot] = foot_vy_[foot] = 0.0f;
+    front_lift_[foot][0] = front_lift_[foot][1] = front_lift_v_[foot][0] = front_lift_v_[foot][1] = 0.0f;
+    foothold_nudge_[foot] = swing_nudge_[foot] = vec2(0.0f);
+  }
+}
+
 std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, float frame_alpha) {
   playback_pose(library_, state, pose_);
   fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, animated_, rotations_);

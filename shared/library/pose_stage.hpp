@@ -99,7 +99,7 @@ class PoseStage {
   /// previous call: world joint positions.
   std::span<const vec3> update(const PlaybackState& state, float dt_s, float frame_alpha = 0.0f);
   /// Forget the previous frame (a new avatar, a teleport the caller wants shown as one).
-  void reset() { has_previous_ = has_ground_ = false; }
+  void reset();
   /// The ground the feet are adapted to (4. above); nullptr (the default): the clips' own flat
   /// floor, as authored. The terrain must outlive the stage or the next call.
   void set_ground(const Terrain* terrain) { ground_ = terrain; }

@@ -334,6 +334,41 @@ TEST(PoseStage, TheSteeringTurnIsEased) {
   EXPECT_LT(w.lag(kCanonLeftUpLeg, kCanonRightUpLeg), 0.02f) << "caught up";
 }
 
+// reset() forgets everything the stage carries from frame to frame (a turn's lag, a jump's
+// decaying offset, foot locks, the ground heights and the feet's lifts): the next pose, wherever
+// it is, is shown as a new stage would show it, not pulled towards the avatar's old place.
+TEST(PoseStage, AfterResetItShowsWhatANewStageWould) {
+  const MotionLibrary& lib = library();
+  const int walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(walk, 0);
+  Terrain ground;  // a step the walk crosses: ground heights and foot lifts are live too
+  ground.steps.push_back({"step", vec3(-10.0f, 0.0f, 2.3f), vec3(10.0f, 0.12f, 10.0f)});
+  PoseStage used(lib);
+  used.set_ground(&ground);
+  PlaybackState s{walk, 0, Placement{vec2(6.0f, 2.0f), 0.0f}, -1};
+  used.update(s, 0.0f);
+  for (int f = 1; f < 12; ++f) {  // steered hard, then a jump: lag, offsets and locks are live
+    s.frame = f;
+    s.segment_start = playback_turned_start(lib, s, 0.314f);
+    used.update(s, 1.0f / 30.0f);
+  }
+  s.segment_start.pos_m += vec2(0.0f, 0.6f);
+  used.update(s, 1.0f / 30.0f);
+  used.reset();
+  PoseStage fresh(lib);
+  fresh.set_ground(&ground);
+  const PlaybackState elsewhere{walk, 5, Placement{vec2(-3.0f, 1.0f), 1.2f}, -1};
+  for (int f = 0; f < 4; ++f) {
+    PlaybackState at = elsewhere;
+    at.frame += f;
+    const float dt = f == 0 ? 0.0f : 1.0f / 30.0f;
+    const std::span<const vec3> a = used.update(at, dt), b = fresh.update(at, dt);
+    float worst = 0.0f;
+    for (size_t j = 0; j < a.size(); ++j) worst = std::max(worst, glm::length(a[j] - b[j]));
+    EXPECT_LT(worst, 1e-5f) << "frame " << f << " after reset: a joint " << worst << " m from a new stage's";
+  }
+}
+
 // Orientation warping: on the turn's frame the chest and shoulders lag the turn more than the
 // pelvis does, and both catch up.
 TEST(PoseStage, ThePelvisFollowsTheTurnBeforeTheShoulders) {
