@@ -156,8 +156,7 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   // averages the stride's sway out) is steered onto the key too while it is kWayOff_rad or more
   // off. Steering on that way alone, with no heading rule, broke corridors, the stairs and
   // wedge recovery (tests Recovery.*Wedged, MotionQuality.UpTheStairs*, Lab.QuickClosedLoop*).
-  const int ahead = std::min(playback_.frame + kSteerAheadFrames, seg.num_frames());
-  const vec2 way = motion_library_root_at(library_, playback_.segment, ahead, playback_.segment_start).pos_m - now.pos_m;
+  const vec2 way = way_ahead();
   const bool going = glm::dot(way, way) > kSteerAheadMin_m * kSteerAheadMin_m;
   const float way_error = going ? wrap_angle(want - std::atan2(way.x, way.y)) : 0.0f;
   const bool way_off = std::abs(way_error) >= kWayOff_rad;
@@ -169,6 +168,11 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   if (!way_off && error * way_error < 0.0f && std::abs(way_error) > kWayNearKey_rad) return false;
   const float step = frame_turn(tree_.config().steer_rad_per_s);
   return rotate_playing(std::clamp(error, -step, step), veto, true);
+}
+
+vec2 LookaheadAvatar::way_ahead() const {
+  const int ahead = std::min(playback_.frame + kSteerAheadFrames, library_.graph.segments[playback_.segment].num_frames());
+  return motion_library_root_at(library_, playback_.segment, ahead, playback_.segment_start).pos_m - root().pos_m;
 }
 
 // The playing segment's heading with its gait sway taken out: from its start's to its end's,

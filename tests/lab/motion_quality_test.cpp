@@ -6,6 +6,7 @@
 #include "lab/lab_experiments.hpp"
 #include "import/bvh.hpp"
 #include "library_build/library_source.hpp"
+#include "library/foreign_capture.hpp"
 #include "support/bvh_variants.hpp"
 #include "support/test_paths.hpp"
 #include "world/data_paths.hpp"
@@ -132,24 +133,9 @@ TEST(MotionQuality, UpTheStairsEveryPlantedFootIsOnTheGroundWhereverTheEdgesAre)
 // the takes as captured (measured: the same to the digit).
 TEST(MotionQuality, OnACaptureInInchesUnderADummyRootTheStageHoldsItsAimsClosedLoop) {
   FORESIGHT_REQUIRE_MOCAP();
-  const auto dir = test::scratch_dir();
-  int takes = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(test::mocap_dir() / "locomotion")) {
-    if (entry.path().extension() != ".bvh") continue;
-    BvhDocument take;
-    std::string error;
-    ASSERT_TRUE(bvh_load(entry.path(), take, error)) << error;
-    test::scale_document(take, 1.0f / 2.54f);
-    test::insert_parent(take, 0, "Reference", 0.0f);
-    ASSERT_TRUE(bvh_save(dir / entry.path().filename(), take, error)) << error;
-    ++takes;
-  }
-  ASSERT_GT(takes, 10);
-  MotionSource source;
-  source.motions_dir = dir;
   MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_locomotion_library(lib));
   std::string error;
-  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
   Scene scene;
   CollisionWorld world;
   ASSERT_TRUE(scene_world_load("maze", scene, world, error)) << error;
@@ -172,6 +158,7 @@ TEST(MotionQuality, OnACaptureInInchesUnderADummyRootTheStageHoldsItsAimsClosedL
   EXPECT_EQ(staged.response_ms_p95, raw.response_ms_p95);
   EXPECT_EQ(staged.shown_response_ms_p95, staged.response_ms_p95) << "the shown body answers with the root";
 
+  MotionSource source;
   source.motions_dir = test::mocap_dir() / "locomotion";
   MotionLibrary captured;
   ASSERT_TRUE(motion_library_from_folder(source, captured, nullptr, error)) << error;

@@ -1,6 +1,6 @@
 #pragma once
-// Capture the team did not make, made more foreign still: the Bandai normal walk rescaled to
-// inches under a dummy root (and, if asked, with its rotation channels reordered), written to a
+// Capture the team did not make, made more foreign still: the Bandai takes rescaled to inches
+// under a dummy root (and, if asked, with their rotation channels reordered), written to a
 // scratch folder and compiled with no unit hint, as a studio's export would arrive.
 #include "import/bvh.hpp"
 #include "library_build/library_source.hpp"
@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 namespace foresight::test {
@@ -23,6 +24,27 @@ inline void foreign_walk_library(const std::string& rotation_order, MotionLibrar
   if (!rotation_order.empty()) reorder_rotations(take, rotation_order);
   const auto dir = scratch_dir();
   ASSERT_TRUE(bvh_save(dir / "walk_variant.bvh", take, error)) << error;
+  MotionSource source;
+  source.motions_dir = dir;
+  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+}
+
+/// Every Bandai locomotion take made foreign that way (no reordering): a whole library, with its
+/// starts, stops and turns. Fails the calling test when a take or the library does not load.
+inline void foreign_locomotion_library(MotionLibrary& lib) {
+  const auto dir = scratch_dir();
+  int takes = 0;
+  std::string error;
+  for (const auto& entry : std::filesystem::directory_iterator(mocap_dir() / "locomotion")) {
+    if (entry.path().extension() != ".bvh") continue;
+    BvhDocument take;
+    ASSERT_TRUE(bvh_load(entry.path(), take, error)) << error;
+    scale_document(take, 1.0f / 2.54f);
+    insert_parent(take, 0, "Reference", 0.0f);
+    ASSERT_TRUE(bvh_save(dir / entry.path().filename(), take, error)) << error;
+    ++takes;
+  }
+  ASSERT_GT(takes, 10);
   MotionSource source;
   source.motions_dir = dir;
   ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
