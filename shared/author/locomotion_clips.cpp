@@ -126,7 +126,10 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   // from standing was followed only after 233-267 ms (the lab's response measure: the last 0.2 s
   // of travel within 30 deg of the key). The speed step at the switch from idle (17 mm/frame^2)
   // is far under the pop threshold; measured in docs/MOTION_QUALITY.md ("A start that sets off").
-  c.start_stop("walk", loco, idle, kWalk, 15, 12, walk_start, 0.5f);
+  // The stop takes 14 frames: in 12 its last step's swing (lift to landing, 0.25 s) snapped the
+  // toe at 127 mm/frame^2, the library's largest locomotion acceleration, so nearly every stop
+  // shown was a pop (docs/MOTION_QUALITY.md, "A stop without a toe snap").
+  c.start_stop("walk", loco, idle, kWalk, 15, 14, walk_start, 0.5f);
 
   // Running (flight phase: the other foot is in the air at every boundary).
   c.steady("run", loco | kTagRun, kRun, 11, {{"22", 22.5f, 11}});

@@ -89,6 +89,7 @@ void PoseStage::reset() {
   turn_lag_[0] = turn_lag_[1] = TurnLag{};
   offset_left_s_ = 0.0f;
   for (FootLock& f : feet_) f = FootLock{};
+  previous_unlocked_.clear();
   body_y_ = body_vy_ = 0.0f;
   for (int foot = 0; foot < 2; ++foot) {
     foot_y_[foot] = foot_vy_[foot] = 0.0f;
@@ -115,8 +116,11 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   if (config_.inertialization) inertialize(state, dt_s);
   if (config_.turn_easing) ease_turn(state, dt_s);
   if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
-  if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
+  if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd) {
+    unlocked_ = shown_;
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
+    previous_unlocked_ = unlocked_;
+  }
   previous_ = shown_;
   previous_animated_ = animated_;
   previous_state_ = state;
@@ -245,7 +249,7 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
   for (int foot = 0; foot < 2; ++foot) {
     const FootLock& lock = feet_[foot];
     if (lock.locked) lock_shift[foot] = ground(lock.at) - ground(shown_[static_cast<size_t>(lock.joint)]);
-    else lock_shift[foot] = decay(lock.release_left_s - dt_s, config_.release_s) * ground(lock.release);
+    else lock_shift[foot] = ground(let_go_offset(lock, lock.release_left_s - dt_s));
   }
   const auto height_at = [this, &lock_shift](int foot, size_t joint, float& h) {
     return terrain_height_at(*ground_, ground(shown_[joint]) + lock_shift[foot], h);
@@ -425,6 +429,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
       offset_left_s_ = config_.inertialize_s;
       ++discontinuities_;
       for (FootLock& f : feet_) f = FootLock{};
+      previous_unlocked_.clear();  // its rates would span the jump
       turn_lag_[0] = turn_lag_[1] = TurnLag{};
       dt_s = 0.0f;
     }
@@ -453,7 +458,6 @@ void PoseStage::lock_foot(int foot, float dt_s) {
   const bool ball = (contact_ & foot_ball_bit(foot)) != 0;
   const bool heel = (contact_ & foot_heel_bit(foot)) != 0;
   f.release_left_s = std::max(0.0f, f.release_left_s - dt_s);
-  const float w = decay(f.release_left_s, config_.release_s);
   if (ball || heel) {
     const int joint = ball ? foot_ball_joint(foot) : foot_heel_joint(foot);
     const vec3 here = shown_[static_cast<size_t>(joint)];
@@ -461,7 +465,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       // A step under way: the foot travels to where the clip has it along a low arc, and is
       // planted there when it lands.
       const float lift = config_.step_height_m * std::sin(kPi * (1.0f - f.release_left_s / config_.release_s));
-      reach(foot, w * f.release + vec3(0.0f, lift, 0.0f));
+      reach(foot, let_go_offset(f, f.release_left_s) + vec3(0.0f, lift, 0.0f));
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       f.locked = false;
       return;
@@ -469,8 +473,8 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     // Planted now: hold the planted part where it is shown now. Rolling from one part to the
     // other (heel to ball, or ball to heel where a capture lifts the ball first): the part now
     // held stays where it was shown last frame, so the roll does not slide it.
-    if (!f.locked) f = FootLock{true, joint, here + w * f.release, vec3(0.0f), 0.0f, false};
-    else if (f.joint != joint) f = FootLock{true, joint, previous_[static_cast<size_t>(joint)], vec3(0.0f), 0.0f, false};
+    if (!f.locked) f = FootLock{true, joint, here + let_go_offset(f, f.release_left_s)};
+    else if (f.joint != joint) f = FootLock{true, joint, previous_[static_cast<size_t>(joint)]};
     f.at += vec3(foothold_nudge_[foot].x, 0.0f, foothold_nudge_[foot].y);  // off a step's edge (adapt_to_ground)
     // Held on the ground plane only: its height is the clip's over the ground (adapt_to_ground).
     vec3 offset = f.at - here;
@@ -478,20 +482,50 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     if (glm::length(offset) > config_.max_lock_offset_m) {
       // The body has turned or moved too far over the planted foot: it steps to where the clip
       // has it, lifted from this frame on (the leg may not even reach the hold).
-      f = FootLock{false, joint, here, offset, config_.release_s, true};
+      f.locked = false;
+      f.joint = joint;
+      f.stepping = true;
+      let_go_from(f, offset, dt_s);
       reach(foot, offset);
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }
-    f.release = offset;
-    f.release_left_s = config_.release_s;
+    let_go_from(f, offset, dt_s);  // ready for the lift
     f.stepping = false;
     reach(foot, offset);
     if (ball) push_off(foot, here + offset);
     return;
   }
   f.locked = false;
-  if (w > 0.0f) reach(foot, w * f.release);
+  if (f.release_left_s > 0.0f) reach(foot, let_go_offset(f, f.release_left_s));
+}
+
+// A foot let go of (lifted, or stepping) is shown at an offset from the pose that dies out over
+// release_s (a quintic: the offset, its rate and its acceleration reach 0 together) and starts at
+// the held part's offset and at the rate that leaves it at rest: the foot sets off from rest
+// however fast the pose's foot moves (steering sweeps a foot 0.5 m from the root 0.15 m a
+// frame), where a decaying offset alone took on all of that speed in one frame (a pop at each
+// step steering forced). The quintic is Bollo's inertialization (GDC 2017, "Inertialization:
+// High-Performance Animation Transitions in Gears of War") with no starting acceleration.
+vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
+  if (left_s <= 0.0f) return vec3(0.0f);
+  const float T = config_.release_s, t = std::clamp(T - left_s, 0.0f, T);
+  const vec2 x0 = lock.let_go_offset, v0 = lock.let_go_rate;
+  const vec2 a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
+  const vec2 b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
+  const vec2 c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
+  const vec2 x = x0 + t * (v0 + t * t * (c + t * (b + t * a)));
+  return vec3(x.x, 0.0f, x.y);
+}
+
+// Starts letting go of a foot held `offset` from the pose this frame.
+void PoseStage::let_go_from(FootLock& lock, vec3 offset, float dt_s) const {
+  const size_t j = static_cast<size_t>(lock.joint);
+  lock.release_left_s = config_.release_s;
+  lock.let_go_offset = ground(offset);
+  lock.let_go_rate = dt_s > 0.0f && !previous_unlocked_.empty()
+                         ? -(ground(unlocked_[j]) - ground(previous_unlocked_[j])) / dt_s
+                         : vec2(0.0f);
 }
 
 // At push-off the body may have gone on further than the leg reaches to the held ball (a hold

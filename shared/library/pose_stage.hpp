@@ -50,8 +50,11 @@
 //     planted foot that it is more than `max_lock_offset_m` from where the clip has it (turning on
 //     the spot by root steering), the foot steps there: over `release_s`, lifted along a low arc
 //     (`step_height_m`), shown as not planted. When the clip lifts the foot the lock's offset
-//     decays over `release_s`. A held ball the leg cannot reach any more (the body gone on at
-//     push-off) lifts the heel, the foot turning about the ball, instead of being dragged.
+//     dies out over `release_s`. Either way the foot is let go of from rest: the offset starts at
+//     the rate that cancels the played foot's (steering sweeps a foot 0.15 m a frame) and dies
+//     out with its rate and acceleration (a quintic). A held ball the leg cannot reach any more
+//     (the body gone on at push-off) lifts the heel, the foot turning about the ball, instead of
+//     being dragged.
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"
@@ -126,8 +129,9 @@ class PoseStage {
     bool locked = false;
     int joint = -1;          ///< The planted part: heel (ankle) or ball.
     vec3 at{0.0f};           ///< Where it is held, world.
-    vec3 release{0.0f};      ///< Offset being let go of after a lift (or a step).
-    float release_left_s = 0;
+    float release_left_s = 0;  ///< Being let go of (let_go_offset).
+    vec2 let_go_offset{0.0f};  ///< The held part's offset from the pose when let go (ground plane)...
+    vec2 let_go_rate{0.0f};    ///< ...and its rate, m/s: the held part at rest however the pose moves.
     bool stepping = false;   ///< The release is a step: the foot is lifted, not planted.
   };
   void inertialize(const PlaybackState& state, float dt_s);
@@ -139,6 +143,8 @@ class PoseStage {
   bool lowest_ground_near(vec2 p, float& height) const;
   vec2 nudge_onto(vec2 p, float height) const;
   void lock_foot(int foot, float dt_s);
+  vec3 let_go_offset(const FootLock& lock, float left_s) const;
+  void let_go_from(FootLock& lock, vec3 offset, float dt_s) const;
   void reach(int foot, vec3 offset, bool carry_foot = true);
   void push_off(int foot, vec3 ball_at);
 
@@ -148,6 +154,7 @@ class PoseStage {
   Pose pose_;
   std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_, landing_;
   std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
+  std::vector<vec3> unlocked_, previous_unlocked_;  ///< shown_ before the foot locks, this frame and the last.
   std::vector<quat> rotations_;
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
