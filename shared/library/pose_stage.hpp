@@ -81,7 +81,7 @@ struct PoseStageConfig {
   float lower_turn_stiffness = 30.0f;  ///< 1/s: the pelvis and legs' (36 deg behind at 540 deg/s).
   bool ground_adaptation = true;    ///< Needs set_ground (4. above).
   /// 1/s: a 0.18 m step is 98 % taken by a foot in 0.3 s; its largest acceleration (k^2 x step,
-  /// 80 mm/frame^2) stays under the built-in library's 99.9th percentile (127: no pop).
+  /// 80 mm/frame^2) stays under the built-in library's 99.9th percentile (121: no pop).
   float foot_ground_stiffness = 20.0f;
   float body_ground_stiffness = 10.0f;  ///< 1/s: the pelvis follows the lower foot more slowly.
   /// A planted foot this close to its ground is put on it at once (a larger gap: the spring).
