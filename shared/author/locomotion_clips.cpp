@@ -128,7 +128,7 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   // is far under the pop threshold; measured in docs/MOTION_QUALITY.md ("A start that sets off").
   // The stop takes 14 frames: in 12 its last step's swing (lift to landing, 0.25 s) snapped the
   // toe at 127 mm/frame^2, the library's largest locomotion acceleration, so nearly every stop
-  // shown was a pop (docs/MOTION_QUALITY.md, "A stop without a toe snap").
+  // shown was a pop (docs/MOTION_QUALITY.md, "Pops at stops, steps and landings").
   c.start_stop("walk", loco, idle, kWalk, 15, 14, walk_start, 0.5f);
 
   // Running (flight phase: the other foot is in the air at every boundary).

@@ -505,7 +505,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
 // the held part's offset and at the rate that leaves it at rest: the foot sets off from rest
 // however fast the pose's foot moves (steering sweeps a foot 0.5 m from the root 0.15 m a
 // frame), where a decaying offset alone took on all of that speed in one frame (a pop at each
-// step steering forced). The quintic is Bollo's inertialization (GDC 2017, "Inertialization:
+// step steering forced). The quintic is Bollo's inertialization (GDC 2018, "Inertialization:
 // High-Performance Animation Transitions in Gears of War") with no starting acceleration.
 vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
   if (left_s <= 0.0f) return vec3(0.0f);
