@@ -89,7 +89,7 @@ void PoseStage::reset() {
   turn_lag_[0] = turn_lag_[1] = TurnLag{};
   offset_left_s_ = 0.0f;
   for (FootLock& f : feet_) f = FootLock{};
-  previous_unlocked_.clear();
+  has_pose_parts_[0] = has_pose_parts_[1] = false;
   body_y_ = body_vy_ = 0.0f;
   for (int foot = 0; foot < 2; ++foot) {
     foot_y_[foot] = foot_vy_[foot] = 0.0f;
@@ -116,11 +116,8 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   if (config_.inertialization) inertialize(state, dt_s);
   if (config_.turn_easing) ease_turn(state, dt_s);
   if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
-  if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd) {
-    unlocked_ = shown_;
+  if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
-    previous_unlocked_ = unlocked_;
-  }
   previous_ = shown_;
   previous_animated_ = animated_;
   previous_state_ = state;
@@ -429,7 +426,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
       offset_left_s_ = config_.inertialize_s;
       ++discontinuities_;
       for (FootLock& f : feet_) f = FootLock{};
-      previous_unlocked_.clear();  // its rates would span the jump
+      has_pose_parts_[0] = has_pose_parts_[1] = false;  // their rates would span the jump
       turn_lag_[0] = turn_lag_[1] = TurnLag{};
       dt_s = 0.0f;
     }
@@ -458,9 +455,16 @@ void PoseStage::lock_foot(int foot, float dt_s) {
   const bool ball = (contact_ & foot_ball_bit(foot)) != 0;
   const bool heel = (contact_ & foot_heel_bit(foot)) != 0;
   f.release_left_s = std::max(0.0f, f.release_left_s - dt_s);
+  // Where the pose has this foot's parts, before any hold moves them, and where it had them.
+  const vec2 was[2] = {pose_parts_[foot][0], pose_parts_[foot][1]};
+  const bool had = has_pose_parts_[foot];
+  pose_parts_[foot][0] = ground(shown_[static_cast<size_t>(foot_heel_joint(foot))]);
+  pose_parts_[foot][1] = ground(shown_[static_cast<size_t>(foot_ball_joint(foot))]);
+  has_pose_parts_[foot] = true;
   if (ball || heel) {
     const int joint = ball ? foot_ball_joint(foot) : foot_heel_joint(foot);
     const vec3 here = shown_[static_cast<size_t>(joint)];
+    const vec2 pose_rate = had && dt_s > 0.0f ? (ground(here) - was[ball ? 1 : 0]) / dt_s : vec2(0.0f);
     if (f.release_left_s > 0.0f && f.stepping) {
       // A step under way: the foot travels to where the clip has it along a low arc, and is
       // planted there when it lands.
@@ -485,12 +489,12 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       f.locked = false;
       f.joint = joint;
       f.stepping = true;
-      let_go_from(f, offset, dt_s);
+      let_go_from(f, offset, pose_rate);
       reach(foot, offset);
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }
-    let_go_from(f, offset, dt_s);  // ready for the lift
+    let_go_from(f, offset, pose_rate);  // ready for the lift
     f.stepping = false;
     reach(foot, offset);
     if (ball) push_off(foot, here + offset);
@@ -518,14 +522,12 @@ vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
   return vec3(x.x, 0.0f, x.y);
 }
 
-// Starts letting go of a foot held `offset` from the pose this frame.
-void PoseStage::let_go_from(FootLock& lock, vec3 offset, float dt_s) const {
-  const size_t j = static_cast<size_t>(lock.joint);
+// Starts letting go of a foot held `offset` from the pose this frame, the pose's held part
+// moving at `pose_rate` (m/s): the offset's rate cancels it.
+void PoseStage::let_go_from(FootLock& lock, vec3 offset, vec2 pose_rate) const {
   lock.release_left_s = config_.release_s;
   lock.let_go_offset = ground(offset);
-  lock.let_go_rate = dt_s > 0.0f && !previous_unlocked_.empty()
-                         ? -(ground(unlocked_[j]) - ground(previous_unlocked_[j])) / dt_s
-                         : vec2(0.0f);
+  lock.let_go_rate = -pose_rate;
 }
 
 // At push-off the body may have gone on further than the leg reaches to the held ball (a hold

@@ -144,7 +144,7 @@ class PoseStage {
   vec2 nudge_onto(vec2 p, float height) const;
   void lock_foot(int foot, float dt_s);
   vec3 let_go_offset(const FootLock& lock, float left_s) const;
-  void let_go_from(FootLock& lock, vec3 offset, float dt_s) const;
+  void let_go_from(FootLock& lock, vec3 offset, vec2 pose_rate) const;
   void reach(int foot, vec3 offset, bool carry_foot = true);
   void push_off(int foot, vec3 ball_at);
 
@@ -154,7 +154,6 @@ class PoseStage {
   Pose pose_;
   std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_, landing_;
   std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
-  std::vector<vec3> unlocked_, previous_unlocked_;  ///< shown_ before the foot locks, this frame and the last.
   std::vector<quat> rotations_;
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
@@ -168,6 +167,8 @@ class PoseStage {
   uint8_t contact_ = 0;
   int discontinuities_ = 0;
   FootLock feet_[2];
+  vec2 pose_parts_[2][2] = {};  ///< Each foot's heel and ball on the ground before the locks (lock_foot).
+  bool has_pose_parts_[2] = {false, false};
   const Terrain* ground_ = nullptr;
   const CollisionWorld* obstacles_ = nullptr;
   bool has_ground_ = false;  ///< The ground heights below have been taken.

@@ -14,13 +14,18 @@
 
 namespace foresight::test {
 
+/// A take in inches (the unit the file does not say) under a dummy root joint.
+inline void make_foreign(BvhDocument& take) {
+  scale_document(take, 1.0f / 2.54f);
+  insert_parent(take, 0, "Reference", 0.0f);
+}
+
 /// Fails the calling test (use ASSERT_NO_FATAL_FAILURE) when the take or the library does not load.
 inline void foreign_walk_library(const std::string& rotation_order, MotionLibrary& lib) {
   BvhDocument take;
   std::string error;
   ASSERT_TRUE(bvh_load(mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", take, error)) << error;
-  scale_document(take, 1.0f / 2.54f);
-  insert_parent(take, 0, "Reference", 0.0f);
+  make_foreign(take);
   if (!rotation_order.empty()) reorder_rotations(take, rotation_order);
   const auto dir = scratch_dir();
   ASSERT_TRUE(bvh_save(dir / "walk_variant.bvh", take, error)) << error;
@@ -39,8 +44,7 @@ inline void foreign_locomotion_library(MotionLibrary& lib) {
     if (entry.path().extension() != ".bvh") continue;
     BvhDocument take;
     ASSERT_TRUE(bvh_load(entry.path(), take, error)) << error;
-    scale_document(take, 1.0f / 2.54f);
-    insert_parent(take, 0, "Reference", 0.0f);
+    make_foreign(take);
     ASSERT_TRUE(bvh_save(dir / entry.path().filename(), take, error)) << error;
     ++takes;
   }
