@@ -40,6 +40,7 @@ void spring_towards(float& x, float& v, float target, float k, float dt) {
 // when that is within reach, never faster than it can brake from to arrive at rest, and never
 // past the target.
 void seek(float& x, float& v, float target, float in_s, float accel, float dt) {
+  if (dt <= 0.0f) return;  // no time, no move (and no 0 / 0 when in_s is 0 too)
   // The fastest rate it can still brake from within d, a frame's braking at a time.
   const float d = target - x, step = 0.5f * accel * dt;
   const float brake = std::sqrt(2.0f * accel * std::abs(d) + step * step) - step;
@@ -57,6 +58,25 @@ float upper_body_share(int joint) {
   if (joint == kCanonSpine) return 1.0f / 3.0f;
   if (joint == kCanonSpine1) return 2.0f / 3.0f;
   return 1.0f;
+}
+
+// The point nearest p within r of both 0 and c (a landing's last step: it changes the foot's
+// rate by at most r, and the stop after it is at most r); half way to c when no point is.
+vec2 nearest_in_lens(vec2 p, vec2 c, float r) {
+  const float d = glm::length(c);
+  if (d >= 2.0f * r) return 0.5f * c;
+  const auto inside = [r](vec2 q, vec2 centre) { return glm::length(q - centre) <= r * 1.0001f; };
+  if (inside(p, vec2(0.0f)) && inside(p, c)) return p;
+  for (const vec2 centre : {vec2(0.0f), c}) {  // onto the disc it is outside of, if that is in the other
+    if (inside(p, centre)) continue;
+    const vec2 q = centre + (p - centre) * (r / glm::length(p - centre));
+    if (inside(q, centre == c ? vec2(0.0f) : c)) return q;
+  }
+  // Else one of the lens's two corners (d > 0 here: the discs differ).
+  const vec2 along = c / d, across(-along.y, along.x);
+  const float h = std::sqrt(std::max(0.0f, r * r - 0.25f * d * d));
+  const vec2 a = 0.5f * c + h * across, b = 0.5f * c - h * across;
+  return glm::length(p - a) <= glm::length(p - b) ? a : b;
 }
 
 }  // namespace
@@ -85,7 +105,7 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
 // forgotten, so a jump's decaying offset, a turn's lag and the foot locks went on pulling the
 // next pose towards where the avatar had been (0.8 m: test AfterResetItShowsWhatANewStageWould).
 void PoseStage::reset() {
-  has_previous_ = has_ground_ = false;
+  has_previous_ = has_ground_ = has_shown_part_rate_ = false;
   turn_lag_[0] = turn_lag_[1] = TurnLag{};
   offset_left_s_ = 0.0f;
   for (FootLock& f : feet_) f = FootLock{};
@@ -118,6 +138,13 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
   if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
+  has_shown_part_rate_ = has_previous_ && dt_s > 0.0f;
+  if (has_shown_part_rate_ && library_.num_joints() > kCanonRightToeEnd)
+    for (int foot = 0; foot < 2; ++foot)
+      for (int part = 0; part < 2; ++part) {
+        const auto j = static_cast<size_t>(part == 0 ? foot_heel_joint(foot) : foot_ball_joint(foot));
+        shown_part_rate_[foot][part] = (ground(shown_[j]) - ground(previous_[j])) / dt_s;
+      }
   previous_ = shown_;
   previous_animated_ = animated_;
   previous_state_ = state;
@@ -477,7 +504,10 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     // Planted now: hold the planted part where it is shown now. Rolling from one part to the
     // other (heel to ball, or ball to heel where a capture lifts the ball first): the part now
     // held stays where it was shown last frame, so the roll does not slide it.
-    if (!f.locked) f = FootLock{true, joint, here + let_go_offset(f, f.release_left_s)};
+    if (!f.locked) {
+      f = FootLock{true, joint, here + let_go_offset(f, f.release_left_s)};
+      touch_down(foot, joint, f.at, dt_s);
+    }
     else if (f.joint != joint) f = FootLock{true, joint, previous_[static_cast<size_t>(joint)]};
     f.at += vec3(foothold_nudge_[foot].x, 0.0f, foothold_nudge_[foot].y);  // off a step's edge (adapt_to_ground)
     // Held on the ground plane only: its height is the clip's over the ground (adapt_to_ground).
@@ -502,6 +532,26 @@ void PoseStage::lock_foot(int foot, float dt_s) {
   }
   f.locked = false;
   if (f.release_left_s > 0.0f) reach(foot, let_go_offset(f, f.release_left_s));
+}
+
+// A foot the clip plants while it is still shown moving fast (steering sweeps a landing foot 0.3-0.5
+// m from the root up to 0.15 m a frame, and the lower body's turn lag carries it on for a few
+// frames after the played turn stops) would stop dead in one frame: a toe at 121-155 mm/frame^2,
+// over the pop threshold, at nearly every landing in a turn. It is held instead where its last
+// move changes its rate by at most max_landing_accel_mps2 and stops at most that (the nearest such
+// place to where the pose lands it; half its incoming move when there is none), so it comes to
+// rest over two frames; a landing as authored is within that and left alone. The hold is then a
+// few cm short of the pose's foot, which the leg reaches by IK (and max_lock_offset_m still
+// steps). Slowing the root or the lower body's turn before a landing did the same but cost
+// response or showed in the planted leg (docs/MOTION_QUALITY.md).
+void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
+  if (!has_shown_part_rate_ || dt_s <= 0.0f) return;
+  const vec2 last = ground(previous_[static_cast<size_t>(joint)]);
+  const vec2 step_in = shown_part_rate_[foot][joint == foot_ball_joint(foot) ? 1 : 0] * dt_s;
+  const vec2 step = ground(at) - last;
+  const vec2 held = last + nearest_in_lens(step, step_in, config_.max_landing_accel_mps2 * dt_s * dt_s);
+  at.x = held.x;
+  at.z = held.y;
 }
 
 // A foot let go of (lifted, or stepping) is shown at an offset from the pose that dies out over
