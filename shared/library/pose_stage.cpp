@@ -491,7 +491,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
   if (ball || heel) {
     const int joint = ball ? foot_ball_joint(foot) : foot_heel_joint(foot);
     const vec3 here = shown_[static_cast<size_t>(joint)];
-    const vec2 pose_rate = had && dt_s > 0.0f ? (ground(here) - was[ball ? 1 : 0]) / dt_s : vec2(0.0f);
+    const bool held_before = f.locked && f.joint == joint;
     if (f.release_left_s > 0.0f && f.stepping) {
       // A step under way: the foot travels to where the clip has it along a low arc, and is
       // planted there when it lands.
@@ -513,18 +513,28 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     // Held on the ground plane only: its height is the clip's over the ground (adapt_to_ground).
     vec3 offset = f.at - here;
     offset.y = 0.0f;
+    // The offset's rate if the foot is let go of now, so that it carries on as shown: a foot held
+    // since last frame at rest while the pose's part moves on at its rate (a steering sweep); a
+    // foot that lands this frame (or rolls onto another part) with its last move as shown. On that
+    // frame the pose's rate is the swing's or a segment switch's (18 cm a frame entering a Bandai
+    // start mid-stride, the foot then planted), which says nothing of where the pose goes next:
+    // cancelling it drove the foot back 18 cm a frame (a toe at 229-247 mm/frame^2, measured).
+    vec2 rate(0.0f);
+    if (had && dt_s > 0.0f)
+      rate = held_before ? (was[ball ? 1 : 0] - ground(here)) / dt_s
+                         : (ground(f.at) - ground(previous_[static_cast<size_t>(joint)])) / dt_s;
     if (glm::length(offset) > config_.max_lock_offset_m) {
       // The body has turned or moved too far over the planted foot: it steps to where the clip
       // has it, lifted from this frame on (the leg may not even reach the hold).
       f.locked = false;
       f.joint = joint;
       f.stepping = true;
-      let_go_from(f, offset, pose_rate);
+      let_go_from(f, offset, rate);
       reach(foot, offset);
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }
-    let_go_from(f, offset, pose_rate);  // ready for the lift
+    let_go_from(f, offset, rate);  // ready for the lift
     f.stepping = false;
     reach(foot, offset);
     if (ball) push_off(foot, here + offset);
@@ -556,8 +566,8 @@ void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
 
 // A foot let go of (lifted, or stepping) is shown at an offset from the pose that dies out over
 // release_s (a quintic: the offset, its rate and its acceleration reach 0 together) and starts at
-// the held part's offset and at the rate that leaves it at rest: the foot sets off from rest
-// however fast the pose's foot moves (steering sweeps a foot 0.5 m from the root 0.15 m a
+// the held part's offset and at the rate that leaves it moving as it was shown (lock_foot): a
+// held foot sets off from rest however fast the pose's foot moves (steering sweeps a foot 0.5 m from the root 0.15 m a
 // frame), where a decaying offset alone took on all of that speed in one frame (a pop at each
 // step steering forced). The quintic is Bollo's inertialization (GDC 2018, "Inertialization:
 // High-Performance Animation Transitions in Gears of War") with no starting acceleration.
@@ -572,12 +582,12 @@ vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
   return vec3(x.x, 0.0f, x.y);
 }
 
-// Starts letting go of a foot held `offset` from the pose this frame, the pose's held part
-// moving at `pose_rate` (m/s): the offset's rate cancels it.
-void PoseStage::let_go_from(FootLock& lock, vec3 offset, vec2 pose_rate) const {
+// Starts letting go of a foot held `offset` from the pose this frame, the offset changing at
+// `rate` (m/s; lock_foot: the foot carries on as shown).
+void PoseStage::let_go_from(FootLock& lock, vec3 offset, vec2 rate) const {
   lock.release_left_s = config_.release_s;
   lock.let_go_offset = ground(offset);
-  lock.let_go_rate = -pose_rate;
+  lock.let_go_rate = rate;
 }
 
 // At push-off the body may have gone on further than the leg reaches to the held ball (a hold

@@ -50,9 +50,9 @@
 //     planted foot that it is more than `max_lock_offset_m` from where the clip has it (turning on
 //     the spot by root steering), the foot steps there: over `release_s`, lifted along a low arc
 //     (`step_height_m`), shown as not planted. When the clip lifts the foot the lock's offset
-//     dies out over `release_s`. Either way the foot is let go of from rest: the offset starts at
-//     the rate that cancels the played foot's (steering sweeps a foot 0.15 m a frame) and dies
-//     out with its rate and acceleration (a quintic). Landing is the same the other way round: a
+//     dies out over `release_s`. Either way the foot is let go of as it was shown moving (a held
+//     foot from rest): the offset starts at the rate that cancels the played foot's (steering
+//     sweeps a foot 0.15 m a frame) and dies out with its rate and acceleration (a quintic). Landing is the same the other way round: a
 //     foot the clip plants while the turn still sweeps it (up to 0.15 m a frame) is put down
 //     short of where the pose lands it, so it comes to rest over two frames instead of stopping
 //     dead in one (touch_down). A held ball the leg cannot reach any more
@@ -140,7 +140,7 @@ class PoseStage {
     vec3 at{0.0f};           ///< Where it is held, world.
     float release_left_s = 0;  ///< Being let go of (let_go_offset).
     vec2 let_go_offset{0.0f};  ///< The held part's offset from the pose when let go (ground plane)...
-    vec2 let_go_rate{0.0f};    ///< ...and its rate, m/s: the held part at rest however the pose moves.
+    vec2 let_go_rate{0.0f};    ///< ...and its rate, m/s: the held part moving on as shown (a held one at rest).
     bool stepping = false;   ///< The release is a step: the foot is lifted, not planted.
   };
   void inertialize(const PlaybackState& state, float dt_s);
@@ -154,7 +154,7 @@ class PoseStage {
   void lock_foot(int foot, float dt_s);
   void touch_down(int foot, int joint, vec3& at, float dt_s) const;
   vec3 let_go_offset(const FootLock& lock, float left_s) const;
-  void let_go_from(FootLock& lock, vec3 offset, vec2 pose_rate) const;
+  void let_go_from(FootLock& lock, vec3 offset, vec2 rate) const;
   void reach(int foot, vec3 offset, bool carry_foot = true);
   void push_off(int foot, vec3 ball_at);
 
