@@ -67,7 +67,8 @@ vec2 nearest_in_lens(vec2 p, vec2 c, float r) {
   if (d >= 2.0f * r) return 0.5f * c;
   const auto inside = [r](vec2 q, vec2 centre) { return glm::length(q - centre) <= r * 1.0001f; };
   if (inside(p, vec2(0.0f)) && inside(p, c)) return p;
-  for (const vec2 centre : {vec2(0.0f), c}) {  // onto the disc it is outside of, if that is in the other
+  // Onto the disc it is outside of, if that lands it in the other.
+  for (const vec2 centre : {vec2(0.0f), c}) {
     if (inside(p, centre)) continue;
     const vec2 q = centre + (p - centre) * (r / glm::length(p - centre));
     if (inside(q, centre == c ? vec2(0.0f) : c)) return q;
@@ -544,22 +545,23 @@ void PoseStage::lock_foot(int foot, float dt_s) {
   if (f.release_left_s > 0.0f) reach(foot, let_go_offset(f, f.release_left_s));
 }
 
-// A foot the clip plants while it is still shown moving fast (steering sweeps a landing foot 0.3-0.5
-// m from the root up to 0.15 m a frame, and the lower body's turn lag carries it on for a few
-// frames after the played turn stops) would stop dead in one frame: a toe at 121-155 mm/frame^2,
-// over the pop threshold, at nearly every landing in a turn. It is held instead where its last
-// move changes its rate by at most max_landing_accel_mps2 and stops at most that (the nearest such
-// place to where the pose lands it; half its incoming move when there is none), so it comes to
-// rest over two frames; a landing as authored is within that and left alone. The hold is then a
-// few cm short of the pose's foot, which the leg reaches by IK (and max_lock_offset_m still
-// steps). Slowing the root or the lower body's turn before a landing did the same but cost
-// response or showed in the planted leg (docs/MOTION_QUALITY.md).
+// A foot the clip plants while it is still shown moving fast (steering sweeps a landing foot
+// 0.3-0.5 m from the root up to 0.15 m a frame, and the lower body's turn lag carries it on for a
+// few frames after the played turn stops) would stop dead in one frame: a toe at 121-155
+// mm/frame^2, over the pop threshold, at nearly every landing in a turn. It is held instead where
+// its last move changes its rate by at most max_landing_accel_mps2 and stops at most that (the
+// nearest such place to where the pose lands it; half its incoming move when there is none), so it
+// comes to rest over two frames; a landing as authored is within that and left alone. The hold is
+// then a few cm short of the pose's foot, which the leg reaches by IK (and max_lock_offset_m still
+// steps). Slowing the root or the lower body's turn before a landing did the same but cost response
+// or showed in the planted leg (docs/MOTION_QUALITY.md).
 void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
   if (!has_shown_part_rate_ || dt_s <= 0.0f) return;
   const vec2 last = ground(previous_[static_cast<size_t>(joint)]);
   const vec2 step_in = shown_part_rate_[foot][joint == foot_ball_joint(foot) ? 1 : 0] * dt_s;
   const vec2 step = ground(at) - last;
-  const vec2 held = last + nearest_in_lens(step, step_in, config_.max_landing_accel_mps2 * dt_s * dt_s);
+  const float most = config_.max_landing_accel_mps2 * dt_s * dt_s;  // m a frame
+  const vec2 held = last + nearest_in_lens(step, step_in, most);
   at.x = held.x;
   at.z = held.y;
 }
@@ -567,10 +569,11 @@ void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
 // A foot let go of (lifted, or stepping) is shown at an offset from the pose that dies out over
 // release_s (a quintic: the offset, its rate and its acceleration reach 0 together) and starts at
 // the held part's offset and at the rate that leaves it moving as it was shown (lock_foot): a
-// held foot sets off from rest however fast the pose's foot moves (steering sweeps a foot 0.5 m from the root 0.15 m a
-// frame), where a decaying offset alone took on all of that speed in one frame (a pop at each
-// step steering forced). The quintic is Bollo's inertialization (GDC 2018, "Inertialization:
-// High-Performance Animation Transitions in Gears of War") with no starting acceleration.
+// held foot sets off from rest however fast the pose's foot moves (steering sweeps a foot 0.5 m
+// from the root 0.15 m a frame), where a decaying offset alone took on all of that speed in one
+// frame (a pop at each step steering forced). The quintic is Bollo's inertialization (GDC 2018,
+// "Inertialization: High-Performance Animation Transitions in Gears of War") with no starting
+// acceleration.
 vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
   if (left_s <= 0.0f) return vec3(0.0f);
   const float T = config_.release_s, t = std::clamp(T - left_s, 0.0f, T);

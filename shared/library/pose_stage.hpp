@@ -50,14 +50,14 @@
 //     planted foot that it is more than `max_lock_offset_m` from where the clip has it (turning on
 //     the spot by root steering), the foot steps there: over `release_s`, lifted along a low arc
 //     (`step_height_m`), shown as not planted. When the clip lifts the foot the lock's offset
-//     dies out over `release_s`. Either way the foot is let go of as it was shown moving (a held
-//     foot from rest): the offset starts at the rate that cancels the played foot's (steering
-//     sweeps a foot 0.15 m a frame) and dies out with its rate and acceleration (a quintic). Landing is the same the other way round: a
-//     foot the clip plants while the turn still sweeps it (up to 0.15 m a frame) is put down
-//     short of where the pose lands it, so it comes to rest over two frames instead of stopping
-//     dead in one (touch_down). A held ball the leg cannot reach any more
-//     (the body gone on at push-off) lifts the heel, the foot turning about the ball, instead of
-//     being dragged.
+//     dies out over `release_s`. Either way the foot is let go of as it was shown moving, and the
+//     offset dies out with its rate and acceleration (a quintic): a held foot from rest (the
+//     offset's rate cancels the played foot's: steering sweeps a foot 0.15 m a frame), one that
+//     lands and steps at once with its last move. Landing is the same the other way round: a
+//     foot the clip plants while the turn still sweeps it is put down short of where the pose
+//     lands it, so it comes to rest over two frames instead of stopping dead in one
+//     (touch_down). A held ball the leg cannot reach any more (the body gone on at push-off)
+//     lifts the heel, the foot turning about the ball, instead of being dragged.
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"
@@ -140,7 +140,7 @@ class PoseStage {
     vec3 at{0.0f};           ///< Where it is held, world.
     float release_left_s = 0;  ///< Being let go of (let_go_offset).
     vec2 let_go_offset{0.0f};  ///< The held part's offset from the pose when let go (ground plane)...
-    vec2 let_go_rate{0.0f};    ///< ...and its rate, m/s: the held part moving on as shown (a held one at rest).
+    vec2 let_go_rate{0.0f};    ///< ...and its rate, m/s: the part moving on as shown (held: at rest).
     bool stepping = false;   ///< The release is a step: the foot is lifted, not planted.
   };
   void inertialize(const PlaybackState& state, float dt_s);
