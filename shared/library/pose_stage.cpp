@@ -21,11 +21,27 @@ constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where
 constexpr float kHanging_m = 0.02f;        // a planted part this far over the ground under it is not on it
 constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to its pose's height is down
 
-// 1 at the start, 0 at the end, flat at both (smoothstep of the time left).
-float decay(float left_s, float total_s) {
-  if (total_s <= 0.0f || left_s <= 0.0f) return 0.0f;
-  const float x = std::clamp(left_s / total_s, 0.0f, 1.0f);
-  return x * x * (3.0f - 2.0f * x);
+// Bollo's inertialization (GDC 2018, "Inertialization: High-Performance Animation Transitions in
+// Gears of War"): an offset that starts at x0 changing at v0 (with no acceleration) and dies out
+// at T with its rate and acceleration (a quintic), t into it.
+template <typename V>
+V inertialized(V x0, V v0, float T, float t) {
+  if (T <= 0.0f || t >= T) return V(0.0f);
+  t = std::max(t, 0.0f);
+  const V a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
+  const V b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
+  const V c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
+  return x0 + t * (v0 + t * t * (c + t * (b + t * a)));
+}
+
+// The rate of inertialized(x0, v0, T, t).
+vec3 inertialized_rate(vec3 x0, vec3 v0, float T, float t) {
+  if (T <= 0.0f || t >= T) return vec3(0.0f);
+  t = std::max(t, 0.0f);
+  const vec3 a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
+  const vec3 b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
+  const vec3 c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
+  return v0 + t * t * (3.0f * c + t * (4.0f * b + t * 5.0f * a));
 }
 
 // One exact step of a critically damped spring (stiffness k, 1/s) moving x towards target:
@@ -93,13 +109,18 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   previous_.resize(n);
   previous_animated_.resize(n);
   offset_.resize(n);
+  offset_rate_.resize(n);
+  sampled_.resize(n);
+  carries_switch_.resize(n);
   landing_.resize(n);
   unturned_.resize(n);
   rotations_.resize(n);
   turn_share_.resize(n);
   const bool canonical = library.num_joints() == kCanonJointCount;
-  for (size_t j = 0; j < n; ++j)
+  for (size_t j = 0; j < n; ++j) {
     turn_share_[j] = config_.orientation_warping && canonical ? upper_body_share(static_cast<int>(j)) : 1.0f;
+    carries_switch_[j] = canonical && j != kCanonHips && j < kCanonLeftUpLeg;
+  }
 }
 
 // Everything carried from frame to frame: before, only the previous frame and the ground were
@@ -439,34 +460,38 @@ void PoseStage::adapt_to_ground(const PlaybackState& state, float frame_alpha, f
 }
 
 void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
+  const size_t n = animated_.size();
   if (has_previous_) {
     // Another segment entered without a transition (a fallback to idle) is a jump however little
     // its joints move (a transition's blend carries the pose on, a fallback nothing); so is any
     // joint moving further in a frame than the clips ever do. (An idle restarted by a fallback
     // while standing is left to the jump test: its loop's ends meet.)
-    bool jumped = state.incoming_transition < 0 && state.segment != previous_state_.segment;
-    for (size_t j = 0; j < animated_.size() && !jumped; ++j)
-      jumped = glm::length(animated_[j] - previous_animated_[j]) > jump_m_;
+    const bool switched = state.segment != previous_state_.segment;
+    bool jumped = switched && state.incoming_transition < 0;
+    for (size_t j = 0; j < n && !jumped; ++j) jumped = glm::length(animated_[j] - previous_animated_[j]) > jump_m_;
     if (jumped) {
       // What was shown last frame is where the new pose starts from: the jump is carried as an
       // offset and decays. Foot locks are taken again where the feet now are.
-      for (size_t j = 0; j < animated_.size(); ++j) offset_[j] = previous_[j] - animated_[j];
+      for (size_t j = 0; j < n; ++j) offset_[j] = previous_[j] - animated_[j], offset_rate_[j] = vec3(0.0f);
       offset_left_s_ = config_.inertialize_s;
       ++discontinuities_;
       for (FootLock& f : feet_) f = FootLock{};
       has_pose_parts_[0] = has_pose_parts_[1] = false;  // their rates would span the jump
       turn_lag_[0] = turn_lag_[1] = TurnLag{};
       dt_s = 0.0f;
+    } else if (switched && dt_s > 0.0f) {
+      carry_switch(state, dt_s);
+      dt_s = 0.0f;
     }
   }
   offset_left_s_ = std::max(0.0f, offset_left_s_ - dt_s);
-  const float w = decay(offset_left_s_, config_.inertialize_s);
-  if (w <= 0.0f) return;
-  for (size_t j = 0; j < shown_.size(); ++j) shown_[j] += w * offset_[j];
+  const float T = config_.inertialize_s;
+  if (offset_left_s_ > 0.0f)
+    for (size_t j = 0; j < n; ++j) shown_[j] += inertialized(offset_[j], offset_rate_[j], T, T - offset_left_s_);
   // Each joint's offset is its own: the legs get their bones' lengths back by IK to where the
   // offset ankles are (measured: without it a fallback on the Bandai capture showed a shin 7 cm
   // short for a few frames).
-  if (library_.num_joints() <= kCanonRightToeEnd) return;
+  if (offset_left_s_ <= 0.0f || library_.num_joints() <= kCanonRightToeEnd) return;
   for (int foot = 0; foot < 2; ++foot) {
     reach(foot, vec3(0.0f));
     // A foot the new pose plants but the decaying offset still holds in the air (a fallback to
@@ -476,6 +501,47 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
     if (std::max(shown_[ball].y - animated_[ball].y, shown_[heel].y - animated_[heel].y) > kLanded_m)
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
   }
+}
+
+// A transition's blend carries the pose on but not its rate: a hand swinging 9 cm a frame at the
+// end of one segment may start the next at rest (the Bandai capture's derived stops and starts:
+// 158-282 mm/frame^2). As in Bollo's inertialization, the pose is shown going on as the segment
+// left would have (its pose and rate now), and the offset from the new segment and the difference
+// of their rates die out over inertialize_s (an offset still dying out carries on in it). Both rates
+// are second-order differences over three of their own frames (the segment left: its last two
+// and the one it would have played now; the new one: its first three), so the motions' own
+// accelerations cancel and only the switch's change of rate is carried (one-sided first
+// differences, two frames apart, carried the motions' own deceleration: the Bandai dash's hands
+// looping at 137-172 mm/frame^2, measured); the steering's turn of the segment's start is
+// ease_turn's, not this. Only from the spine up (carries_switch_): carried in the pelvis and legs
+// too, the offsets fought the foot locks and the leg IK (Bandai obstacles, 10 seeds: 3.3 -> 5.8
+// pops a minute, ground max 0.4 -> 3.5 cm, 2 shown collisions; measured).
+void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
+  const float T = config_.inertialize_s, left_s = offset_left_s_ - dt_s;
+  for (size_t j = 0; j < offset_.size(); ++j) {  // where an offset dying out is now, and its rate
+    const vec3 x = left_s > 0.0f ? inertialized(offset_[j], offset_rate_[j], T, T - left_s) : vec3(0.0f);
+    offset_rate_[j] = left_s > 0.0f ? inertialized_rate(offset_[j], offset_rate_[j], T, T - left_s) : vec3(0.0f);
+    offset_[j] = x;
+  }
+  // Adds `weight` x the pose of `s` at `frame` to the offset and `rate_weight` x it / (2 frames)
+  // to its rate, for the joints that carry a switch.
+  const auto add = [this](PlaybackState s, int frame, float weight, float rate_weight) {
+    const Segment& seg = library_.graph.segments[s.segment];
+    s.frame = std::clamp(frame, 0, seg.num_frames());
+    playback_pose(library_, s, pose_);
+    fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, sampled_, rotations_);
+    const float per_s = rate_weight * 0.5f * library_.clips[seg.clip].fps;
+    for (size_t j = 0; j < sampled_.size(); ++j)
+      if (carries_switch_[j]) offset_[j] += weight * sampled_[j], offset_rate_[j] += per_s * sampled_[j];
+  };
+  const PlaybackState& left = previous_state_;
+  add(left, left.frame + 1, 1.0f, 3.0f);  // the segment left, now: at its rate backwards...
+  add(left, left.frame, 0.0f, -4.0f);
+  add(left, left.frame - 1, 0.0f, 1.0f);
+  add(state, state.frame, -1.0f, 3.0f);  // ...less the new one, at its rate forwards
+  add(state, state.frame + 1, 0.0f, -4.0f);
+  add(state, state.frame + 2, 0.0f, 1.0f);
+  offset_left_s_ = T;
 }
 
 void PoseStage::lock_foot(int foot, float dt_s) {
@@ -571,18 +637,11 @@ void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
 // the held part's offset and at the rate that leaves it moving as it was shown (lock_foot): a
 // held foot sets off from rest however fast the pose's foot moves (steering sweeps a foot 0.5 m
 // from the root 0.15 m a frame), where a decaying offset alone took on all of that speed in one
-// frame (a pop at each step steering forced). The quintic is Bollo's inertialization (GDC 2018,
-// "Inertialization: High-Performance Animation Transitions in Gears of War") with no starting
-// acceleration.
+// frame (a pop at each step steering forced).
 vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
   if (left_s <= 0.0f) return vec3(0.0f);
-  const float T = config_.release_s, t = std::clamp(T - left_s, 0.0f, T);
-  const vec2 x0 = lock.let_go_offset, v0 = lock.let_go_rate;
-  const vec2 a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
-  const vec2 b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
-  const vec2 c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
-  const vec2 x = x0 + t * (v0 + t * t * (c + t * (b + t * a)));
-  return vec3(x.x, 0.0f, x.y);
+  const float T = config_.release_s;
+  return from_ground(inertialized(lock.let_go_offset, lock.let_go_rate, T, T - left_s), 0.0f);
 }
 
 // Starts letting go of a foot held `offset` from the pose this frame, the offset changing at

@@ -5,10 +5,14 @@
 //  1. Inertialization. When the sampled pose jumps (any joint moves further in one frame than the
 //     library's clips ever move one: a snapshot correction, a reconnect) or another segment is
 //     entered without a transition however little it moves (a fallback to idle: no blend carries
-//     the pose on), the jump becomes an offset from the new pose that decays to zero over
-//     `inertialize_s` (smoothstep, so it starts flat and lands flat) instead of a pop. A foot the
+//     the pose on), the jump becomes an offset from the new pose that dies out over
+//     `inertialize_s` (a quintic: it starts and lands at rest) instead of a pop. A foot the
 //     new pose plants but the offset still holds in the air (a fallback in mid-stride) is
-//     landing, not planted, until it is within 1 cm of its pose's height.
+//     landing, not planted, until it is within 1 cm of its pose's height. A switch with a
+//     transition (whose blend carries the pose on, not its rate) carries the upper body's rate
+//     on: the spine, arms and head are shown going on as the segment left would have, and the
+//     difference dies out over `inertialize_s` (Bollo's inertialization; the legs are the foot
+//     locks', the pelvis carries them).
 //  2. Turn easing. Root steering turns the whole body about the root at up to 540 deg/s, starting
 //     and stopping at full speed: a hand 0.4 m from the root would jump 0.13 m a frame. The
 //     steering's part of the turn (the segment's start rotated while the segment plays on) is
@@ -144,6 +148,7 @@ class PoseStage {
     bool stepping = false;   ///< The release is a step: the foot is lifted, not planted.
   };
   void inertialize(const PlaybackState& state, float dt_s);
+  void carry_switch(const PlaybackState& state, float dt_s);
   void ease_turn(const PlaybackState& state, float dt_s);
   void turn_about(vec2 pivot, float share);
   bool turned_into_obstacle() const;
@@ -163,8 +168,10 @@ class PoseStage {
   float jump_m_ = 0.5f;
   Pose pose_;
   std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_, landing_;
+  std::vector<vec3> offset_rate_, sampled_;  ///< The inertialized offset's starting rate; a pose carry_switch samples.
   std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
   std::vector<quat> rotations_;
+  std::vector<char> carries_switch_;  ///< Per joint: whether a switch's change of rate is carried (carry_switch).
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
   PlaybackState previous_state_;

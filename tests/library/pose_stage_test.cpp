@@ -386,6 +386,71 @@ TEST(PoseStage, OnACaptureOfAnotherUnitAndRootAFootLetGoOfWhileSteeringSetsOffFr
   EXPECT_LT(step_starts[step_starts.size() / 2], 0.045f) << "median step start, m/frame^2";
 }
 
+// Over every transition of `lib` played straight through (unsteered, from a few frames before the
+// switch to a few after): the largest acceleration of a joint from the spine up about the switch,
+// as played and as shown, m/frame^2, sorted.
+struct SwitchAccel {
+  std::vector<float> played, shown;
+};
+SwitchAccel upper_body_at_switches(const MotionLibrary& lib) {
+  SwitchAccel out;
+  const auto peak = [](const std::vector<std::vector<vec3>>& frames, size_t from, size_t to) {
+    float a = 0.0f;
+    for (size_t f = from; f <= to; ++f)
+      for (size_t j = kCanonSpine; j < kCanonLeftUpLeg; ++j)
+        a = std::max(a, glm::length(frames[f + 1][j] - 2.0f * frames[f][j] + frames[f - 1][j]));
+    return a;
+  };
+  for (int i = 0; i < static_cast<int>(lib.graph.transitions.size()); ++i) {
+    const Transition& t = lib.graph.transitions[static_cast<size_t>(i)];
+    const int n = lib.graph.segments[static_cast<size_t>(t.from)].num_frames();
+    if (n < 4 || lib.graph.segments[static_cast<size_t>(t.to)].num_frames() < 4) continue;
+    PoseStage stage(lib);
+    PlaybackState s{t.from, n - 4, Placement{}, -1};
+    std::vector<std::vector<vec3>> shown, played;
+    for (int f = 0; f < 8; ++f) {
+      if (f == 4) playback_take(lib, s, i);
+      const std::span<const vec3> p = stage.update(s, f == 0 ? 0.0f : 1.0f / 30.0f);
+      shown.emplace_back(p.begin(), p.end());
+      played.emplace_back(stage.animated().begin(), stage.animated().end());
+      ++s.frame;
+    }
+    out.played.push_back(peak(played, 3, 6));  // the switch is frame 4
+    out.shown.push_back(peak(shown, 3, 6));
+  }
+  std::sort(out.played.begin(), out.played.end());
+  std::sort(out.shown.begin(), out.shown.end());
+  return out;
+}
+
+// A transition's blend carries the pose on but not its rate (a hand swinging on at the end of a
+// derived stop, the derived start beginning at rest: 158-282 mm/frame^2 in the Bandai maze runs):
+// the stage carries the upper body's rate through a switch and lets the difference die out. Over
+// the built-in library's 468 transitions the largest acceleration from the spine up about the
+// switch, 90th percentile, is 44 mm/frame^2 as played and 41 as shown (it was as played); the
+// worst, 95 as played, is 106 as shown (a punch leaving the stance, under the pop threshold of 121).
+TEST(PoseStage, ASwitchCarriesTheUpperBodysRateOn) {
+  const SwitchAccel r = upper_body_at_switches(library());
+  ASSERT_GT(r.played.size(), 100u);
+  const size_t p90 = r.played.size() * 9 / 10;
+  EXPECT_LT(r.shown[p90], r.played[p90]);
+  EXPECT_LT(r.shown.back(), 0.121f) << "no switch shows a pop";
+}
+
+// The same on capture the team did not make (the Bandai walk in inches under a dummy root, with
+// its derived starts, stops and bends, 889 transitions): 90th percentile 43 mm/frame^2 as played,
+// 29 as shown; the worst 80 as played, 63 as shown.
+TEST(PoseStage, OnACaptureOfAnotherUnitAndRootASwitchCarriesTheUpperBodysRateOn) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_walk_library("", lib));
+  const SwitchAccel r = upper_body_at_switches(lib);
+  ASSERT_GT(r.played.size(), 100u);
+  const size_t p90 = r.played.size() * 9 / 10;
+  EXPECT_LT(r.shown[p90], 0.8f * r.played[p90]);
+  EXPECT_LT(r.shown.back(), r.played.back());
+}
+
 // A body that moved 30 cm in one frame (less than a jump the stage inertializes) leaves its
 // planted feet behind, out of the legs' reach: each steps to where the clip has it, and from that
 // very frame it is lifted, not planted. (It was counted planted on the step's first frame while
@@ -442,7 +507,9 @@ TEST(PoseStage, AJumpIsInertializedNotShown) {
     s.frame = f;
     shown = stage.update(s, 1.0f / 30.0f);
     EXPECT_GE(shown[0].x, previous_x - 1e-4f) << "moving over, never back";
-    EXPECT_LT(shown[0].x - previous_x, 0.25f) << "in steps, not a jump";
+    // The offset dies out as a quintic (its rate and acceleration start and end at 0): its
+    // fastest frame moves 1.875 x 1 m / 6 frames, 0.31 m.
+    EXPECT_LT(shown[0].x - previous_x, 0.33f) << "in steps, not a jump";
     previous_x = shown[0].x;
   }
   EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
