@@ -23,26 +23,28 @@ constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to
 
 // Bollo's inertialization (GDC 2018, "Inertialization: High-Performance Animation Transitions in
 // Gears of War"): an offset that starts at x0 changing at v0 (with no acceleration) and dies out
-// at T with its rate and acceleration (a quintic), t into it.
+// at T with its rate and acceleration (a quintic); at(t) and rate_at(t), t into it.
 template <typename V>
-V inertialized(V x0, V v0, float T, float t) {
-  if (T <= 0.0f || t >= T) return V(0.0f);
-  t = std::max(t, 0.0f);
-  const V a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
-  const V b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
-  const V c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
-  return x0 + t * (v0 + t * t * (c + t * (b + t * a)));
-}
-
-// The rate of inertialized(x0, v0, T, t).
-vec3 inertialized_rate(vec3 x0, vec3 v0, float T, float t) {
-  if (T <= 0.0f || t >= T) return vec3(0.0f);
-  t = std::max(t, 0.0f);
-  const vec3 a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
-  const vec3 b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
-  const vec3 c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
-  return v0 + t * t * (3.0f * c + t * (4.0f * b + t * 5.0f * a));
-}
+struct Inertialized {
+  V x0, v0, a = V(0.0f), b = V(0.0f), c = V(0.0f);
+  float T;
+  Inertialized(V x0_, V v0_, float T_) : x0(x0_), v0(v0_), T(T_) {
+    if (T <= 0.0f) return;
+    a = -(6.0f * v0 * T + 12.0f * x0) / (2.0f * std::pow(T, 5.0f));
+    b = (16.0f * v0 * T + 30.0f * x0) / (2.0f * std::pow(T, 4.0f));
+    c = -(12.0f * v0 * T + 20.0f * x0) / (2.0f * std::pow(T, 3.0f));
+  }
+  V at(float t) const {
+    if (T <= 0.0f || t >= T) return V(0.0f);
+    t = std::max(t, 0.0f);
+    return x0 + t * (v0 + t * t * (c + t * (b + t * a)));
+  }
+  V rate_at(float t) const {
+    if (T <= 0.0f || t >= T) return V(0.0f);
+    t = std::max(t, 0.0f);
+    return v0 + t * t * (3.0f * c + t * (4.0f * b + t * 5.0f * a));
+  }
+};
 
 // One exact step of a critically damped spring (stiffness k, 1/s) moving x towards target:
 // stable at any dt, no overshoot, the rate continuous.
@@ -487,7 +489,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
   offset_left_s_ = std::max(0.0f, offset_left_s_ - dt_s);
   const float T = config_.inertialize_s;
   if (offset_left_s_ > 0.0f)
-    for (size_t j = 0; j < n; ++j) shown_[j] += inertialized(offset_[j], offset_rate_[j], T, T - offset_left_s_);
+    for (size_t j = 0; j < n; ++j) shown_[j] += Inertialized(offset_[j], offset_rate_[j], T).at(T - offset_left_s_);
   // Each joint's offset is its own: the legs get their bones' lengths back by IK to where the
   // offset ankles are (measured: without it a fallback on the Bandai capture showed a shin 7 cm
   // short for a few frames).
@@ -519,9 +521,8 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
 void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
   const float T = config_.inertialize_s, left_s = offset_left_s_ - dt_s;
   for (size_t j = 0; j < offset_.size(); ++j) {  // where an offset dying out is now, and its rate
-    const vec3 x = left_s > 0.0f ? inertialized(offset_[j], offset_rate_[j], T, T - left_s) : vec3(0.0f);
-    offset_rate_[j] = left_s > 0.0f ? inertialized_rate(offset_[j], offset_rate_[j], T, T - left_s) : vec3(0.0f);
-    offset_[j] = x;
+    const Inertialized dying(offset_[j], offset_rate_[j], T);
+    offset_[j] = dying.at(T - left_s), offset_rate_[j] = dying.rate_at(T - left_s);
   }
   // Adds `weight` x the pose of `s` at `frame` to the offset and `rate_weight` x it / (2 frames)
   // to its rate, for the joints that carry a switch.
@@ -641,7 +642,7 @@ void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
 vec3 PoseStage::let_go_offset(const FootLock& lock, float left_s) const {
   if (left_s <= 0.0f) return vec3(0.0f);
   const float T = config_.release_s;
-  return from_ground(inertialized(lock.let_go_offset, lock.let_go_rate, T, T - left_s), 0.0f);
+  return from_ground(Inertialized(lock.let_go_offset, lock.let_go_rate, T).at(T - left_s), 0.0f);
 }
 
 // Starts letting go of a foot held `offset` from the pose this frame, the offset changing at
