@@ -113,16 +113,15 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   offset_.resize(n);
   offset_rate_.resize(n);
   sampled_.resize(n);
-  carries_switch_.resize(n);
+  frame_pose_.resize(n);
+  previous_frame_pose_.resize(n);
   landing_.resize(n);
   unturned_.resize(n);
   rotations_.resize(n);
   turn_share_.resize(n);
   const bool canonical = library.num_joints() == kCanonJointCount;
-  for (size_t j = 0; j < n; ++j) {
+  for (size_t j = 0; j < n; ++j)
     turn_share_[j] = config_.orientation_warping && canonical ? upper_body_share(static_cast<int>(j)) : 1.0f;
-    carries_switch_[j] = canonical && j != kCanonHips && j < kCanonLeftUpLeg;
-  }
 }
 
 // Everything carried from frame to frame: before, only the previous frame and the ground were
@@ -144,7 +143,8 @@ void PoseStage::reset() {
 
 std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, float frame_alpha) {
   playback_pose(library_, state, pose_);
-  fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, animated_, rotations_);
+  fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, frame_pose_, rotations_);
+  animated_ = frame_pose_;
   if (frame_alpha > 0.0f) {  // between two frames: joint positions interpolated, as drawn before
     PlaybackState next = state;
     next.frame += 1;
@@ -171,6 +171,7 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
       }
   previous_ = shown_;
   previous_animated_ = animated_;
+  previous_frame_pose_.swap(frame_pose_);
   previous_state_ = state;
   has_previous_ = true;
   return shown_;
@@ -515,7 +516,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
 // accelerations cancel and only the switch's change of rate is carried (one-sided first
 // differences, two frames apart, carried the motions' own deceleration: the Bandai dash's hands
 // looping at 137-172 mm/frame^2, measured); the steering's turn of the segment's start is
-// ease_turn's, not this. Only from the spine up (carries_switch_): carried in the pelvis and legs
+// ease_turn's, not this. Only from the spine up: carried in the pelvis and legs
 // too, the offsets fought the foot locks and the leg IK (Bandai obstacles, 10 seeds: 3.3 -> 5.8
 // pops a minute, ground max 0.4 -> 3.5 cm, 2 shown collisions; measured).
 void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
@@ -524,24 +525,29 @@ void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
     const Inertialized dying(offset_[j], offset_rate_[j], T);
     offset_[j] = dying.at(T - left_s), offset_rate_[j] = dying.rate_at(T - left_s);
   }
-  // Adds `weight` x the pose of `s` at `frame` to the offset and `rate_weight` x it / (2 frames)
-  // to its rate, for the joints that carry a switch.
-  const auto add = [this](PlaybackState s, int frame, float weight, float rate_weight) {
-    const Segment& seg = library_.graph.segments[s.segment];
-    s.frame = std::clamp(frame, 0, seg.num_frames());
+  // Adds `weight` x `pose` (of a segment of `s`'s) to the offset and `rate_weight` x it / (2
+  // frames) to its rate, for the joints from the spine up.
+  const size_t upper_end = library_.num_joints() == kCanonJointCount ? kCanonLeftUpLeg : kCanonSpine;
+  const auto add = [&](const std::vector<vec3>& pose, const PlaybackState& s, float weight, float rate_weight) {
+    const float per_s = rate_weight * 0.5f * library_.clips[library_.graph.segments[s.segment].clip].fps;
+    for (size_t j = kCanonSpine; j < upper_end; ++j) offset_[j] += weight * pose[j], offset_rate_[j] += per_s * pose[j];
+  };
+  // The pose of `s` at `frame`, clamped to its segment.
+  const auto sample = [this](PlaybackState s, int frame) -> const std::vector<vec3>& {
+    s.frame = std::clamp(frame, 0, library_.graph.segments[s.segment].num_frames());
     playback_pose(library_, s, pose_);
     fk_pose(library_.skeleton, pose_.local_pos_m, pose_.local_rot, sampled_, rotations_);
-    const float per_s = rate_weight * 0.5f * library_.clips[seg.clip].fps;
-    for (size_t j = 0; j < sampled_.size(); ++j)
-      if (carries_switch_[j]) offset_[j] += weight * sampled_[j], offset_rate_[j] += per_s * sampled_[j];
+    return sampled_;
   };
+  // The segment left, now, at its rate backwards (its frame before was sampled last update)...
   const PlaybackState& left = previous_state_;
-  add(left, left.frame + 1, 1.0f, 3.0f);  // the segment left, now: at its rate backwards...
-  add(left, left.frame, 0.0f, -4.0f);
-  add(left, left.frame - 1, 0.0f, 1.0f);
-  add(state, state.frame, -1.0f, 3.0f);  // ...less the new one, at its rate forwards
-  add(state, state.frame + 1, 0.0f, -4.0f);
-  add(state, state.frame + 2, 0.0f, 1.0f);
+  add(sample(left, left.frame + 1), left, 1.0f, 3.0f);
+  add(previous_frame_pose_, left, 0.0f, -4.0f);
+  add(sample(left, left.frame - 1), left, 0.0f, 1.0f);
+  // ...less the new one, at its rate forwards (its frame now was sampled this update).
+  add(frame_pose_, state, -1.0f, 3.0f);
+  add(sample(state, state.frame + 1), state, 0.0f, -4.0f);
+  add(sample(state, state.frame + 2), state, 0.0f, 1.0f);
   offset_left_s_ = T;
 }
 

@@ -169,9 +169,9 @@ class PoseStage {
   Pose pose_;
   std::vector<vec3> animated_, shown_, previous_, previous_animated_, offset_, landing_;
   std::vector<vec3> offset_rate_, sampled_;  ///< The inertialized offset's starting rate; a pose carry_switch samples.
+  std::vector<vec3> frame_pose_, previous_frame_pose_;  ///< The sampled pose on the frame (no frame_alpha): now, last update.
   std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
   std::vector<quat> rotations_;
-  std::vector<char> carries_switch_;  ///< Per joint: whether a switch's change of rate is carried (carry_switch).
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
   PlaybackState previous_state_;
