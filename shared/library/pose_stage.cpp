@@ -8,6 +8,7 @@
 #include "world/terrain.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace foresight {
@@ -195,14 +196,14 @@ void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
   const vec2 pivot = playback_root(library_, state).pos_m;
   std::copy(shown_.begin(), shown_.end(), unturned_.begin());
   turn_about(pivot, 1.0f);
-  if (obstacles_ == nullptr || !turned_into_obstacle()) return;
+  if (obstacles_ == nullptr || !shown_into_obstacle(0, shown_.size() - 1)) return;
   // The lag would show a joint (a hand swinging behind the turn) in a box the played pose is
   // clear of: show as much of it as stays clear (bisection), and go on from there.
   float clear = 0.0f, blocked = 1.0f;
   for (int i = 0; i < 8; ++i) {
     const float mid = 0.5f * (clear + blocked);
     turn_about(pivot, mid);
-    (turned_into_obstacle() ? blocked : clear) = mid;
+    (shown_into_obstacle(0, shown_.size() - 1) ? blocked : clear) = mid;
   }
   turn_about(pivot, clear);
   for (TurnLag& lag : turn_lag_) lag.offset_rad *= clear, lag.speed_rad_s *= clear;
@@ -217,9 +218,9 @@ void PoseStage::turn_about(vec2 pivot, float share) {
   }
 }
 
-bool PoseStage::turned_into_obstacle() const {
+bool PoseStage::shown_into_obstacle(size_t first, size_t last) const {
   const BodyHeights shown = body_heights(library_, shown_), played = body_heights(library_, animated_);
-  for (size_t j = 0; j < shown_.size(); ++j)
+  for (size_t j = first; j <= last; ++j)
     if (joint_flesh_collides(library_, *obstacles_, shown_[j], shown) &&
         !joint_flesh_collides(library_, *obstacles_, animated_[j], played))
       return true;
@@ -570,7 +571,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       // A step under way: the foot travels to where the clip has it along a low arc, and is
       // planted there when it lands.
       const float lift = config_.step_height_m * std::sin(kPi * (1.0f - f.release_left_s / config_.release_s));
-      reach(foot, let_go_offset(f, f.release_left_s) + vec3(0.0f, lift, 0.0f));
+      reach_clear(foot, let_go_offset(f, f.release_left_s) + vec3(0.0f, lift, 0.0f));
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       f.locked = false;
       return;
@@ -615,7 +616,29 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     return;
   }
   f.locked = false;
-  if (f.release_left_s > 0.0f) reach(foot, let_go_offset(f, f.release_left_s));
+  if (f.release_left_s > 0.0f) reach_clear(foot, let_go_offset(f, f.release_left_s));
+}
+
+// A foot let go of is shown at an offset from the pose's: where that would show the leg in a box
+// the played one is clear of (a swinging toe 2 cm into a crate beside the path, measured), only
+// the share of the offset that stays clear is shown (bisection, as the eased turn does).
+void PoseStage::reach_clear(int foot, vec3 offset) {
+  const size_t knee = static_cast<size_t>(foot == 0 ? kCanonLeftLeg : kCanonRightLeg), toe_end = knee + 3;
+  std::array<vec3, 4> leg;
+  std::copy(shown_.begin() + static_cast<long>(knee), shown_.begin() + static_cast<long>(toe_end) + 1, leg.begin());
+  reach(foot, offset);
+  if (obstacles_ == nullptr || !shown_into_obstacle(knee, toe_end)) return;
+  const auto reach_share = [&](float share) {
+    std::copy(leg.begin(), leg.end(), shown_.begin() + static_cast<long>(knee));
+    reach(foot, share * offset);
+  };
+  float clear = 0.0f, blocked = 1.0f;
+  for (int i = 0; i < 8; ++i) {
+    const float mid = 0.5f * (clear + blocked);
+    reach_share(mid);
+    (shown_into_obstacle(knee, toe_end) ? blocked : clear) = mid;
+  }
+  reach_share(clear);
 }
 
 // A foot the clip plants while it is still shown moving fast (steering sweeps a landing foot

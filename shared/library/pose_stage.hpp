@@ -151,7 +151,8 @@ class PoseStage {
   void carry_switch(const PlaybackState& state, float dt_s);
   void ease_turn(const PlaybackState& state, float dt_s);
   void turn_about(vec2 pivot, float share);
-  bool turned_into_obstacle() const;
+  /// Whether a shown joint in [first, last] is in a box (set_obstacles) its played one is clear of.
+  bool shown_into_obstacle(size_t first, size_t last) const;
   void adapt_to_ground(const PlaybackState& state, float frame_alpha, float dt_s);
   bool landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s, vec2& at);
   bool lowest_ground_near(vec2 p, float& height) const;
@@ -161,6 +162,7 @@ class PoseStage {
   vec3 let_go_offset(const FootLock& lock, float left_s) const;
   void let_go_from(FootLock& lock, vec3 offset, vec2 rate) const;
   void reach(int foot, vec3 offset, bool carry_foot = true);
+  void reach_clear(int foot, vec3 offset);
   void push_off(int foot, vec3 ball_at);
 
   const MotionLibrary& library_;

@@ -192,6 +192,64 @@ SteeredFeet feet_through_a_sharp_turn(const MotionLibrary& lib, int segment, flo
   return out;
 }
 
+// A foot let go of (lifted, or stepping) is shown at an offset from the pose's that dies out. Where
+// that would show it in a box the played foot clears (traced in the obstacles: a swinging toe 2 cm
+// into a crate), only the share of the offset that stays clear is shown. A walking step steered
+// sharply (the turn alone, no lag: the offsets are the feet's), with a thin post put just past the
+// foot joint shown furthest from its played place while the foot swings free.
+TEST(PoseStage, AFootLetGoOfIsNotShownInABoxThePlayedFootClears) {
+  const MotionLibrary& lib = library();
+  const int walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(walk, 0);
+  PoseStageConfig config;
+  config.turn_easing = false;
+  const int frames = lib.graph.segments[static_cast<size_t>(walk)].num_frames();
+  // Plays the steered step with `world`'s boxes; calls `at` with the stage after each frame.
+  const auto play = [&](const CollisionWorld* world, const std::function<void(int, const PoseStage&)>& at) {
+    PoseStage stage(lib, config);
+    stage.set_obstacles(world);
+    PlaybackState s{walk, 0, Placement{}, -1};
+    for (int f = 0; f < frames; ++f) {
+      s.frame = f;
+      if (f >= 1 && f <= 5) s.segment_start = playback_turned_start(lib, s, 0.314f);
+      stage.update(s, f == 0 ? 0.0f : 1.0f / 30.0f);
+      at(f, stage);
+    }
+  };
+  float farthest = 0.0f;
+  vec2 post(0.0f);
+  play(nullptr, [&](int, const PoseStage& stage) {
+    for (int foot = 0; foot < 2; ++foot) {
+      if (stage.contact() & (foot_heel_bit(foot) | foot_ball_bit(foot))) continue;  // planted: held
+      for (int j = foot_heel_joint(foot); j <= foot_ball_joint(foot) + 1; ++j) {
+        const vec2 off = ground(stage.shown()[static_cast<size_t>(j)]) - ground(stage.animated()[static_cast<size_t>(j)]);
+        if (glm::length(off) <= farthest) continue;
+        farthest = glm::length(off);
+        post = ground(stage.shown()[static_cast<size_t>(j)]) + 0.05f * glm::normalize(off);
+      }
+    }
+  });
+  ASSERT_GT(farthest, 0.04f) << "a foot let go of is shown away from its played place";
+  Scene scene;
+  scene.bounds = {vec2(-20.0f), vec2(20.0f)};
+  scene.boxes.push_back({"post", BoxKind::kWall, vec3(post.x - 0.005f, 0.0f, post.y - 0.005f),
+                         vec3(post.x + 0.005f, 2.0f, post.y + 0.005f)});
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  int shown_in_post = 0, checked = 0;
+  play(nullptr, [&](int, const PoseStage& stage) {
+    shown_in_post += shown_joints_collide(lib, world, stage.shown()) && !shown_joints_collide(lib, world, stage.animated());
+  });
+  ASSERT_GT(shown_in_post, 0) << "without the boxes the offset shows the foot in the post";
+  play(&world, [&](int f, const PoseStage& stage) {
+    if (shown_joints_collide(lib, world, stage.animated())) return;  // the clip's own
+    ++checked;
+    EXPECT_FALSE(shown_joints_collide(lib, world, stage.shown())) << "frame " << f;
+  });
+  EXPECT_GT(checked, frames / 2);
+}
+
 // Walking steps steered at 540 deg/s for 5 frames: the body turns so far over the planted foot
 // that it steps. Before, a foot let go of (a forced step, or the clip lifting it) was shown at a
 // decaying offset from the played foot, so it took on at once the speed at which steering sweeps
