@@ -166,7 +166,9 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   // while the path comes round to it) would turn the path away again, and the way rule back on
   // the next frame: left alone, the clip's own turn brings both round.
   if (!way_off && error * way_error < 0.0f && std::abs(way_error) > kWayNearKey_rad) return false;
-  const float step = frame_turn(tree_.config().steer_rad_per_s);
+  const float sideways = going ? std::abs(wrap_angle(std::atan2(way.x, way.y) - now.heading_rad)) : 0.0f;
+  const float share = sideways > kSidewaysFrom_rad && sideways < kSidewaysTo_rad ? kSidewaysSteerShare : 1.0f;
+  const float step = frame_turn(share * tree_.config().steer_rad_per_s);
   return rotate_playing(std::clamp(error, -step, step), veto, true);
 }
 

@@ -51,6 +51,12 @@ class LookaheadAvatar {
   static constexpr float kSteerAheadMin_m = 0.05f;
   static constexpr float kWayOff_rad = 0.44f;       // 25 deg
   static constexpr float kWayNearKey_rad = 0.09f;   // 5 deg
+  // A segment going sideways (its way kSidewaysFrom_rad to kSidewaysTo_rad off its facing: a side
+  // step) is steered at kSidewaysSteerShare of the steering rate: aiming its way at the key turns
+  // its body as far, and a side step spun at the full rate pops its knees (docs/MOTION_QUALITY.md).
+  static constexpr float kSidewaysFrom_rad = 0.785f;  // 45 deg
+  static constexpr float kSidewaysTo_rad = 2.356f;    // 135 deg: a walk backwards is not sideways
+  static constexpr float kSidewaysSteerShare = 1.0f / 3.0f;  // 180 deg/s of 540
 
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,

@@ -248,6 +248,76 @@ TEST(LookaheadAvatar, OnAForeignCaptureSteeringAnswersOnTheFrameAndKeepsThePathO
   expect_steering_leaves_the_path_on_the_key(lib);
 }
 
+// A segment going sideways (a side step: its way 45-135 deg off its facing) is steered at a third
+// of the rate: aiming its way at the key turns its body as far, and side steps spun round at
+// 540 deg/s were most of the built-in library's pops (docs/MOTION_QUALITY.md). A forward walk
+// still turns at the full rate. Each locomotion segment with a way over its first frames is
+// spawned on open ground with the key 90 deg off that way; its first steered frame's turn is
+// compared with 18 deg. Returns how many sideways segments were seen.
+int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
+  const CollisionWorld& world = open_field();
+  MotionTreeConfig config;
+  config.steer_rad_per_s = radians(540.0f);
+  const float full = radians(540.0f) / 30.0f;
+  int sideways = 0, forward = 0;
+  for (int s = 0; s < lib.graph.num_segments(); ++s) {
+    const Segment& seg = lib.graph.segments[static_cast<size_t>(s)];
+    if (!(seg.tags & kTagLocomotion) || seg.num_frames() < 8 || std::abs(lib.clips[seg.clip].fps - 30.0f) > 0.1f) continue;
+    LookaheadAvatar avatar(lib, world, config, s, Placement{vec2(0.0f), 0.0f});
+    const vec2 way = avatar.way_ahead();
+    if (glm::length(way) < 0.05f) continue;
+    const float off = std::abs(wrap_angle(std::atan2(way.x, way.y) - avatar.root().heading_rad));
+    const bool is_sideways = off > radians(50.0f) && off < radians(130.0f);
+    if (std::getenv("FS_DBG")) std::printf("%s off %.0f\n", seg.name.c_str(), degrees(off));
+    if (!is_sideways && off > radians(20.0f)) continue;  // neither clearly: left to the rule's edges
+    const float key = std::atan2(way.x, way.y) + radians(90.0f);
+    ControlInput in;
+    in.camera_dir = vec2(-std::sin(key), std::cos(key));  // camera yaw 0: the world direction (sin, cos)
+    avatar.set_input(in);
+    avatar.grow(GrowBudget::expansions(300));
+    const float before = avatar.playback().segment_start.heading_rad;
+    const AvatarStepResult r = avatar.step();
+    if (!r.steered || avatar.playback().segment != s) continue;
+    const float turned = std::abs(wrap_angle(avatar.playback().segment_start.heading_rad - before));
+    if (is_sideways) {
+      ++sideways;
+      EXPECT_NEAR(turned, full / 3.0f, 1e-3f) << seg.name << " goes " << degrees(off) << " deg off its facing";
+    } else {
+      ++forward;
+      EXPECT_NEAR(turned, full, 1e-3f) << seg.name;
+    }
+  }
+  EXPECT_GT(forward, 3);
+  return sideways;
+}
+
+TEST(LookaheadAvatar, ASideStepIsSteeredAtAThirdOfTheRate) {
+  EXPECT_GE(expect_sideways_segments_steered_slower(default_library()), 2) << "side_step_left, side_step_right";
+}
+
+// The same on capture the team did not make: the Bandai walk in inches under a dummy root, its
+// body turned 90 deg on its path (a crab walk: it goes sideways), beside the walk as captured.
+TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredAtAThirdOfTheRate) {
+  FORESIGHT_REQUIRE_MOCAP();
+  BvhDocument walk;
+  std::string error;
+  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", walk, error)) << error;
+  BvhDocument crab = walk;
+  const int hips = test::joint_named(crab, "Hips");
+  ASSERT_GE(hips, 0);
+  test::turn_body_on_its_path(crab, hips, 90.0);
+  const auto dir = test::scratch_dir();
+  for (auto [take, name] : {std::pair{&walk, "walk.bvh"}, std::pair{&crab, "crab_walk.bvh"}}) {
+    test::make_foreign(*take);
+    ASSERT_TRUE(bvh_save(dir / name, *take, error)) << error;
+  }
+  MotionSource source;
+  source.motions_dir = dir;
+  MotionLibrary lib;
+  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  EXPECT_GE(expect_sideways_segments_steered_slower(lib), 1);
+}
+
 TEST(LookaheadAvatar, RootSteeringNeverEntersAWall) {
   const auto& lib = default_library();
   const auto& maze = loaded_scene("maze");

@@ -109,6 +109,34 @@ inline void reorder_rotations(BvhDocument& doc, const std::string& order) {
   }
 }
 
+// The body turned `deg` about the vertical on its own path (the pelvis joint's rotation turned, its
+// positions kept): a walk forwards becomes a crab walk sideways, its feet sliding. Rotation
+// channels are rewritten in ZYX order. Y is up.
+inline void turn_body_on_its_path(BvhDocument& doc, int pelvis, double deg) {
+  reorder_rotations(doc, "ZYX");
+  const int nc = doc.num_channels();
+  const BvhJoint& joint = doc.joints[static_cast<size_t>(pelvis)];
+  int first_rotation = -1;
+  for (size_t c = 0; c < joint.channels.size() && first_rotation < 0; ++c)
+    if (!bvh_channel_is_position(joint.channels[c])) first_rotation = static_cast<int>(c);
+  if (first_rotation < 0) return;
+  const glm::dmat4 yaw = glm::rotate(glm::dmat4(1.0), glm::radians(deg), glm::dvec3(0.0, 1.0, 0.0));
+  for (int f = 0; f < doc.num_frames; ++f) {
+    float* v = doc.values.data() + static_cast<size_t>(f) * nc + doc.channel_offset(pelvis) + first_rotation;
+    glm::dmat4 r = yaw;
+    for (int k = 0; k < 3; ++k) {
+      glm::dvec3 axis(0.0);
+      axis[2 - k] = 1.0;  // Z, Y, X
+      r = r * glm::rotate(glm::dmat4(1.0), glm::radians(static_cast<double>(v[k])), axis);
+    }
+    double a = 0, b = 0, c = 0;
+    glm::extractEulerAngleZYX(r, a, b, c);
+    v[0] = static_cast<float>(glm::degrees(a));
+    v[1] = static_cast<float>(glm::degrees(b));
+    v[2] = static_cast<float>(glm::degrees(c));
+  }
+}
+
 // Frames linearly interpolated in between: the take at `factor` times its rate.
 inline void upsample(BvhDocument& doc, int factor) {
   const int nc = doc.num_channels();
