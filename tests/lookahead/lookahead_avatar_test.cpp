@@ -248,12 +248,12 @@ TEST(LookaheadAvatar, OnAForeignCaptureSteeringAnswersOnTheFrameAndKeepsThePathO
   expect_steering_leaves_the_path_on_the_key(lib);
 }
 
-// A segment going sideways (a side step: its way 45-135 deg off its facing) is steered at a third
+// A segment going sideways (a side step: its way 45-135 deg off its facing) is steered at a sixth
 // of the rate: aiming its way at the key turns its body as far, and side steps spun round at
 // 540 deg/s were most of the built-in library's pops (docs/MOTION_QUALITY.md). A forward walk
 // still turns at the full rate. Each locomotion segment with a way over its first frames is
 // spawned on open ground with the key 90 deg off that way; its first steered frame's turn is
-// compared with 18 deg. Returns how many sideways segments were seen.
+// compared with 18 deg (3 deg sideways). Returns how many sideways segments were seen.
 int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
   const CollisionWorld& world = open_field();
   MotionTreeConfig config;
@@ -281,7 +281,8 @@ int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
     const float turned = std::abs(wrap_angle(avatar.playback().segment_start.heading_rad - before));
     if (is_sideways) {
       ++sideways;
-      EXPECT_NEAR(turned, full / 3.0f, 1e-3f) << seg.name << " goes " << degrees(off) << " deg off its facing";
+      EXPECT_LT(turned, 0.5f * full) << seg.name << " goes " << degrees(off) << " deg off its facing";
+      EXPECT_NEAR(turned, full * LookaheadAvatar::kSidewaysSteerShare, 1e-3f) << seg.name;
     } else {
       ++forward;
       EXPECT_NEAR(turned, full, 1e-3f) << seg.name;
@@ -291,13 +292,13 @@ int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
   return sideways;
 }
 
-TEST(LookaheadAvatar, ASideStepIsSteeredAtAThirdOfTheRate) {
+TEST(LookaheadAvatar, ASideStepIsSteeredSlowerThanAWalk) {
   EXPECT_GE(expect_sideways_segments_steered_slower(default_library()), 2) << "side_step_left, side_step_right";
 }
 
 // The same on capture the team did not make: the Bandai walk in inches under a dummy root, its
 // body turned 90 deg on its path (a crab walk: it goes sideways), beside the walk as captured.
-TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredAtAThirdOfTheRate) {
+TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
   FORESIGHT_REQUIRE_MOCAP();
   BvhDocument walk;
   std::string error;
