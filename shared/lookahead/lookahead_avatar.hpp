@@ -56,7 +56,7 @@ class LookaheadAvatar {
   // its body as far, and a side step spun at the full rate pops its knees (docs/MOTION_QUALITY.md).
   static constexpr float kSidewaysFrom_rad = 0.785f;  // 45 deg
   static constexpr float kSidewaysTo_rad = 2.356f;    // 135 deg: a walk backwards is not sideways
-  static constexpr float kSidewaysSteerShare = 1.0f / 6.0f;  // 90 deg/s of 540 (1/3, 1/4, 1/12: measured)
+  static constexpr float kSidewaysSteerShare = 1.0f / 3.0f;  // 180 deg/s of 540 (1/4, 1/6, 1/12: measured)
 
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,

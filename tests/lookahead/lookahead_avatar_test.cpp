@@ -248,12 +248,12 @@ TEST(LookaheadAvatar, OnAForeignCaptureSteeringAnswersOnTheFrameAndKeepsThePathO
   expect_steering_leaves_the_path_on_the_key(lib);
 }
 
-// A segment going sideways (a side step: its way 45-135 deg off its facing) is steered at a sixth
+// A segment going sideways (a side step: its way 45-135 deg off its facing) is steered at a third
 // of the rate: aiming its way at the key turns its body as far, and side steps spun round at
 // 540 deg/s were most of the built-in library's pops (docs/MOTION_QUALITY.md). A forward walk
 // still turns at the full rate. Each locomotion segment with a way over its first frames is
 // spawned on open ground with the key 90 deg off that way; its first steered frame's turn is
-// compared with 18 deg (3 deg sideways). Returns how many sideways segments were seen.
+// compared with 18 deg (6 deg sideways). Returns how many sideways segments were seen.
 int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
   const CollisionWorld& world = open_field();
   MotionTreeConfig config;
