@@ -380,23 +380,33 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   }
   // Nothing feasible ahead: idle where the segment ends, crouching if it was crouching (standing
   // up under a beam would pop the pose and leave it where it cannot crouch again), if that is
-  // free; else hold the last frame and look again from the same root next frame.
+  // free. A segment may end where not even idle fits (a capture's dash ends a hand's width from
+  // a box its narrower running body clears): held on its last frame, the avatar stood in that
+  // pose for ever (obstacles, Bandai capture, 110 s). So the idle is tried back along the way
+  // the avatar came (where its body just was: it stops short), then turned; the stage shows the
+  // move as an inertialized jump. Only if no stand fits within kStandSearch_m does it hold
+  // the last frame and look again from the same root next frame.
   result.fallback = true;
   ++fallbacks_;
   const Placement here = playback_next_start(library_, playback_);
   const bool crouching = (library_.graph.segments[playback_.segment].tags & kTagCrouch) != 0;
-  const auto idle_fits = [&](int idle) {
-    return idle >= 0 && segment_feasible(world_, library_.segment_shapes[idle], here) &&
-           (veto == nullptr || !veto->blocks(idle, here));
+  const auto idle_fits = [&](int idle, const Placement& at) {
+    return segment_feasible(world_, library_.segment_shapes[idle], at) &&
+           (veto == nullptr || !veto->blocks(idle, at));
   };
-  const int idle = crouching && idle_fits(crouch_fallback_segment_) ? crouch_fallback_segment_ : fallback_segment_;
-  if (idle_fits(idle)) {
-    playback_ = {idle, 0, here, -1};
-    tree_.reset(idle, here);
-  } else {
-    playback_.frame = library_.graph.segments[playback_.segment].num_frames() - 1;
-    tree_.reset(playback_.segment, playback_.segment_start, playback_.incoming_transition);
-  }
+  static constexpr float kTurns_rad[] = {0.0f, 0.785f, -0.785f, 1.571f, -1.571f, 3.142f};
+  const vec2 back = rotate_ground(vec2(0.0f, -1.0f), here.heading_rad);
+  for (const int idle : {crouching ? crouch_fallback_segment_ : -1, fallback_segment_})
+    for (const float turn : kTurns_rad)
+      for (float d = 0.0f; idle >= 0 && d <= kStandSearch_m + 1e-4f; d += kStandSearchStep_m) {
+        const Placement at{here.pos_m + back * d, wrap_angle(here.heading_rad + turn)};
+        if (!idle_fits(idle, at)) continue;
+        playback_ = {idle, 0, at, -1};
+        tree_.reset(idle, at);
+        return result;
+      }
+  playback_.frame = library_.graph.segments[playback_.segment].num_frames() - 1;
+  tree_.reset(playback_.segment, playback_.segment_start, playback_.incoming_transition);
   return result;
 }
 

@@ -57,6 +57,9 @@ class LookaheadAvatar {
   static constexpr float kSidewaysFrom_rad = 0.785f;  // 45 deg
   static constexpr float kSidewaysTo_rad = 2.356f;    // 135 deg: a walk backwards is not sideways
   static constexpr float kSidewaysSteerShare = 1.0f / 3.0f;  // 180 deg/s of 540 (1/4, 1/6, 1/12: measured)
+  // A fallback whose idle does not fit where the segment ends looks this far back (and turned).
+  static constexpr float kStandSearch_m = 0.5f;
+  static constexpr float kStandSearchStep_m = 0.1f;
 
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,

@@ -507,6 +507,48 @@ TEST(LookaheadAvatar, WithNoBudgetItFallsBackToIdleAndNeverMoves) {
   EXPECT_EQ(avatar.playback().segment, avatar.fallback_segment());
 }
 
+// A segment can end where not even idle fits (a capture's dash ends a hand's width from a box
+// its narrower running body clears). The avatar used to hold that segment's last frame for ever;
+// it now stands where idle fits nearest, back along its way. Here a wall's face is put 10 cm
+// inside the standing body's front at the walk's end, with no budget, so the walk has no child.
+TEST(LookaheadAvatar, WhereIdleDoesNotFitAtTheEndItStandsBackNotFrozenInTheLastPose) {
+  const auto& lib = default_library();
+  const int walk = lib.graph.find_segment("walk_l");
+  ASSERT_GE(walk, 0);
+  const Placement start{vec2(0.0f), 0.0f};  // facing +Z
+  const Placement end = motion_library_root_at(lib, walk, lib.graph.segments[walk].num_frames(), start);
+  LookaheadAvatar avatar(lib, open_field(), MotionTreeConfig{}, walk, start);
+  const int idle = avatar.fallback_segment();
+  ASSERT_GE(idle, 0);
+  float front = 0.0f;  // the standing body's reach ahead of its root
+  for (const BodyVolume& v : lib.volumes(idle)) front = std::max(front, v.center_m.y + std::abs(v.half_axis_m.y) + v.radius_m);
+  const vec2 ahead = rotate_ground(vec2(0.0f, 1.0f), end.heading_rad);
+  Scene scene;
+  scene.bounds = GroundRect{vec2(-20.0f), vec2(20.0f)};
+  const vec2 face = end.pos_m + ahead * (front - 0.10f);
+  scene.boxes.push_back({"wall", BoxKind::kWall, {face.x - 2.0f, 0.0f, face.y}, {face.x + 2.0f, 2.5f, face.y + 1.0f}});
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_FALSE(segment_feasible(world, lib.segment_shapes[idle], end)) << "idle must not fit where the walk ends";
+
+  LookaheadAvatar placed(lib, world, MotionTreeConfig{}, walk, start);
+  PoseCheckScratch scratch;
+  int standing_frames = 0, colliding = 0;
+  for (int f = 0; f < 3 * 30; ++f) {
+    placed.step();
+    if (placed.playback().segment != idle) continue;
+    ++standing_frames;
+    colliding += shown_pose_collides(lib, world, placed.playback(), scratch);
+  }
+  EXPECT_GT(standing_frames, 2 * 30) << "held segment " << lib.graph.segments[placed.playback().segment].name;
+  EXPECT_EQ(colliding, 0);
+  const vec2 moved = placed.root().pos_m - end.pos_m;
+  EXPECT_LT(glm::length(moved), LookaheadAvatar::kStandSearch_m + 0.01f);
+  EXPECT_LT(glm::dot(moved, ahead), 0.0f) << "it stands back along its way";
+  EXPECT_NEAR(wrap_angle(placed.root().heading_rad - end.heading_rad), 0.0f, 0.01f);
+}
+
 TEST(LookaheadAvatar, BrokenInputIsRefusedCountedAndMeansStop) {
   const auto& lib = default_library();
   const auto& arena = loaded_scene("arena");
