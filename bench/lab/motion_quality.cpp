@@ -2,7 +2,6 @@
 
 #include "bench_json.hpp"
 #include "anim/canonical_skeleton.hpp"
-#include "anim/fk.hpp"
 #include "lab/lab_experiments.hpp"
 #include "library/foot_contact.hpp"
 #include "library/pose_check.hpp"
@@ -57,8 +56,7 @@ struct Accumulator {
 };
 
 void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Scene& scene, const GoalPoint& goal,
-                 const MotionQualityController& c, const MotionQualityOptions& o, uint64_t seed,
-                 const LibraryPops& pops, Accumulator& acc) {
+                 const MotionQualityController& c, const MotionQualityOptions& o, uint64_t seed, Accumulator& acc) {
   const SpawnPoint& spawn = scene.spawns.front();
   const Placement start{spawn.pos_m, spawn.heading_rad};
   ScriptedPlayerConfig pc;
@@ -96,8 +94,8 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
     now.swap(after);
     std::copy(shown.begin(), shown.end(), after.begin());
     const Segment& seg = lib.graph.segments[played.segment];
-    own[0] = own[1], own[1] = own[2], own[2] = pops.own_at(seg.clip, seg.first_frame + played.frame);
-    if (const float a = frame >= 2 ? largest_acceleration(before, now, after) : 0.0f; a > pops.threshold_m) {
+    own[0] = own[1], own[1] = own[2], own[2] = lib.frame_acceleration_at(seg.clip, seg.first_frame + played.frame);
+    if (const float a = frame >= 2 ? largest_acceleration(before, now, after) : 0.0f; a > lib.pop_threshold_m) {
       ++acc.r.pops;
       if (a > kAddedPopMargin * std::max({own[0], own[1], own[2]})) ++acc.r.added_pops;
     }
@@ -147,38 +145,6 @@ std::vector<MotionQualityController> motion_quality_controllers(float steer_rad_
           {"look-ahead 1 + steering + pose stage", steered, true}};
 }
 
-float LibraryPops::own_at(int clip, int frame) const {
-  const size_t first = clip_first[static_cast<size_t>(clip)];
-  const size_t end = static_cast<size_t>(clip) + 1 < clip_first.size() ? clip_first[static_cast<size_t>(clip) + 1] : own_m.size();
-  return own_m[std::min(first + static_cast<size_t>(std::max(frame, 0)), end - 1)];
-}
-
-LibraryPops library_pops(const MotionLibrary& lib) {
-  LibraryPops pops;
-  std::vector<vec3> pos;
-  for (const Clip& c : lib.clips) {
-    pops.clip_first.push_back(pops.own_m.size());
-    fk_clip_positions(lib.skeleton, c, pos);
-    const auto n = static_cast<size_t>(c.num_joints);
-    for (int f = 0; f < c.num_frames; ++f) {
-      const int mid = std::clamp(f, 1, std::max(1, c.num_frames - 2));
-      float m = 0.0f;
-      if (mid + 1 < c.num_frames)
-        for (size_t j = 0; j < n; ++j) {
-          const size_t i = static_cast<size_t>(mid) * n + j;
-          m = std::max(m, glm::length(pos[i + n] - 2.0f * pos[i] + pos[i - n]));
-        }
-      pops.own_m.push_back(m);
-    }
-  }
-  // The threshold over the frames that have two neighbours (the ends only repeat them).
-  std::vector<double> inner;
-  for (size_t c = 0; c < lib.clips.size(); ++c)
-    for (int f = 1; f + 1 < lib.clips[c].num_frames; ++f) inner.push_back(pops.own_m[pops.clip_first[c] + static_cast<size_t>(f)]);
-  pops.threshold_m = static_cast<float>(percentile(inner, 99.9));
-  return pops;
-}
-
 std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& library, const Scene& scene,
                                                         const CollisionWorld& world,
                                                         const std::vector<MotionQualityController>& controllers,
@@ -195,15 +161,14 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
   if (!probe.plan(library, scene, world, {scene.spawns.front().pos_m, scene.spawns.front().heading_rad},
                   goal.pos_m, ScriptedPlayerConfig{}, error))
     return {};
-  const LibraryPops pops = library_pops(library);
   std::vector<MotionQualityResult> results;
   for (const MotionQualityController& c : controllers) {
     Accumulator acc;
     acc.r.controller = c.name;
     acc.r.pose_stage = c.pose_stage;
-    acc.r.pop_threshold_m = pops.threshold_m;
+    acc.r.pop_threshold_m = library.pop_threshold_m;
     for (int seed = 1; seed <= options.seeds; ++seed)
-      measure_run(library, world, scene, goal, c, options, static_cast<uint64_t>(seed), pops, acc);
+      measure_run(library, world, scene, goal, c, options, static_cast<uint64_t>(seed), acc);
     MotionQualityResult& r = acc.r;
     r.contact_samples = static_cast<int64_t>(acc.skate_cm_per_s.size());
     r.foot_skate_cm_per_s_p50 = percentile(acc.skate_cm_per_s, 50);

@@ -68,7 +68,7 @@ struct MotionQualityResult {
   double ground_error_cm_max = 0.0;
   int64_t pops = 0;
   double pops_per_min = 0.0;
-  int64_t added_pops = 0;            ///< Pops over 10 % above the played clip frames' own (LibraryPops).
+  int64_t added_pops = 0;            ///< Pops over 10 % above the played clip frames' own (MotionLibrary::frame_acceleration_m).
   double added_pops_per_min = 0.0;
   int64_t limit_violations = 0;
   int64_t discontinuities = 0;       ///< Jumps the pose stage inertialized.
@@ -80,19 +80,9 @@ struct MotionQualityResult {
   int64_t shown_collisions = 0;      ///< Frames whose shown pose (after the stage) does (shown_joints_collide).
   int64_t collisions = 0;            ///< The larger of the two.
   double goals_reached_share = 0.0;
-  float pop_threshold_m = 0.0f;      ///< LibraryPops::threshold_m: the same for every controller.
+  float pop_threshold_m = 0.0f;      ///< MotionLibrary::pop_threshold_m: the same for every controller.
 };
 
-/// The library's own accelerations: each clip frame's largest joint acceleration (m per frame^2,
-/// the second difference of FK positions, root motion included; a clip's first and last frames
-/// take their neighbour's) and the value 99.9 % of them stay under, the pop threshold.
-struct LibraryPops {
-  float threshold_m = 0.0f;
-  std::vector<float> own_m;         ///< Clip after clip, frame after frame.
-  std::vector<size_t> clip_first;   ///< Per clip: its first frame's index into own_m.
-  float own_at(int clip, int frame) const;
-};
-LibraryPops library_pops(const MotionLibrary& library);
 
 /// Runs every controller; results in the controllers' order. `error` is set (and the result
 /// empty) when the scene has no spawn or no such goal, or the player cannot plan.

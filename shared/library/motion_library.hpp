@@ -8,6 +8,7 @@
 #include "world/body_volume.hpp"
 #include "world/segment_shape.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -50,6 +51,14 @@ struct MotionLibrary : MotionLibrarySource {
   std::vector<uint8_t> foot_contact;
   /// The farthest any joint moves between two frames of a clip (the pose stage's jump test).
   float max_joint_step_m = 0.0f;
+  /// Per clip frame (indexed like root_track): its largest joint acceleration, m per frame^2
+  /// (FK positions' second difference, root motion included; a clip's first and last frames take
+  /// the next inner frame's)...
+  std::vector<float> frame_acceleration_m;
+  /// ...the value 99.9 % of the inner frames' stay under: a shown frame over it is a pop...
+  float pop_threshold_m = 0.0f;
+  /// ...and how far root steering may turn the motion on that frame, rad (library_build/pop_budget.hpp).
+  std::vector<float> steer_limit_rad;
   std::vector<SegmentMotion> segment_motion;
   /// Per segment: body volumes of frames [first_frame, end_frame] (end inclusive), in the
   /// segment's own frame (its start placement is the origin facing +Z), ready for
@@ -66,6 +75,13 @@ struct MotionLibrary : MotionLibrarySource {
   }
   uint8_t foot_contact_at(int clip, int frame) const {
     return foot_contact[static_cast<size_t>(clip_track_offset[clip] + frame)];
+  }
+  /// frame_acceleration_m and steer_limit_rad of a clip frame; a frame past either end of the
+  /// clip reads the end's.
+  float frame_acceleration_at(int clip, int frame) const { return frame_acceleration_m[clip_frame_index(clip, frame)]; }
+  float steer_limit_at(int clip, int frame) const { return steer_limit_rad[clip_frame_index(clip, frame)]; }
+  size_t clip_frame_index(int clip, int frame) const {
+    return static_cast<size_t>(clip_track_offset[clip] + std::clamp(frame, 0, clips[clip].num_frames - 1));
   }
   std::span<const BodyVolume> volumes(int segment) const { return segment_shapes[segment].frames; }
   /// Index of a transition from -> to, or -1.

@@ -4,6 +4,7 @@
 #include "anim/root_motion.hpp"
 #include "library/foot_contact.hpp"
 #include "library/pose_check.hpp"
+#include "library_build/pop_budget.hpp"
 
 #include <xxhash.h>
 
@@ -133,6 +134,7 @@ bool motion_library_compile(MotionLibrarySource source, MotionLibrary& out, std:
   }
 
   lib.head_top_margin_m = head_top_margin_m(lib.skeleton);
+  compute_pop_budget(lib);
 
   // Per segment: relative movement and body volumes in the segment's own frame.
   std::vector<std::vector<BodyVolume>> volumes(lib.graph.segments.size());

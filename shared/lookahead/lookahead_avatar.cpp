@@ -168,7 +168,11 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   if (!way_off && error * way_error < 0.0f && std::abs(way_error) > kWayNearKey_rad) return false;
   const float sideways = going ? std::abs(wrap_angle(std::atan2(way.x, way.y) - now.heading_rad)) : 0.0f;
   const float share = sideways > kSidewaysFrom_rad && sideways < kSidewaysTo_rad ? kSidewaysSteerShare : 1.0f;
-  const float step = frame_turn(share * tree_.config().steer_rad_per_s);
+  // No faster than the clip frames about this one leave room for (a frame's shown acceleration
+  // spans its neighbours): a turn must not push a joint over the library's pop threshold.
+  float step = frame_turn(share * tree_.config().steer_rad_per_s);
+  for (int f = seg.first_frame + playback_.frame - 1; f <= seg.first_frame + playback_.frame + 1; ++f)
+    step = std::min(step, library_.steer_limit_at(seg.clip, f));
   return rotate_playing(std::clamp(error, -step, step), veto, true);
 }
 

@@ -74,13 +74,14 @@ TEST(Responsiveness, AWalkStartSetsOffTheWayItFaces) {
   // mostly sideways first (the weight going onto the stance foot: 6 cm at 49 deg off its facing
   // by frame 5), and the lab's response measure (the last 0.2 s of travel within 30 deg of the
   // key) followed starts only after 233-267 ms. Setting off at 0.5 m/s, it has gone about 9 cm
-  // at about 31 deg by frame 5 (167 ms).
-  for (const char* name : {"walk_start_l", "walk_start_r"}) {
+  // at about 31 deg by frame 5 (167 ms). The crouch walk's start likewise (from rest it was
+  // followed after 300-333 ms).
+  for (const char* name : {"walk_start_l", "walk_start_r", "crouch_walk_start_l", "crouch_walk_start_r"}) {
     const std::vector<Placement> track = clip_root_track(find_clip(name)->clip);
     ASSERT_GT(track.size(), 5u) << name;
     const vec2 moved = track[5].pos_m - track[0].pos_m;
     const vec2 facing = rotate_ground(vec2(0.0f, 1.0f), track[0].heading_rad);
-    EXPECT_GE(glm::length(moved), 0.08f) << name;
+    EXPECT_GE(glm::length(moved), 0.06f) << name;  // the measure needs 4 cm in 0.2 s
     EXPECT_GE(glm::dot(moved, facing), std::cos(radians(40.0f)) * glm::length(moved)) << name;
   }
 }
