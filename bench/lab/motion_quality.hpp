@@ -83,7 +83,6 @@ struct MotionQualityResult {
   float pop_threshold_m = 0.0f;      ///< MotionLibrary::pop_threshold_m: the same for every controller.
 };
 
-
 /// Runs every controller; results in the controllers' order. `error` is set (and the result
 /// empty) when the scene has no spawn or no such goal, or the player cannot plan.
 std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& library, const Scene& scene,

@@ -27,6 +27,7 @@ void compute_pop_budget(MotionLibrary& lib) {
   // A frame's acceleration and speed are second and central differences over its neighbours; a
   // clip's first and last frames take the next inner frame's.
   const auto inner = [](int f, int frames) { return std::clamp(f, 1, std::max(1, frames - 2)); };
+  const auto acceleration = [n](const std::vector<vec3>& p, size_t i) { return glm::length(p[i + n] - 2.0f * p[i] + p[i - n]); };
 
   lib.frame_acceleration_m.clear();
   std::vector<float> inner_frames;
@@ -36,11 +37,7 @@ void compute_pop_budget(MotionLibrary& lib) {
       const size_t mid = static_cast<size_t>(inner(f, frames));
       float largest = 0.0f;
       if (static_cast<int>(mid) + 1 < frames)
-        for (size_t j = 0; j < n; ++j) {
-          const std::vector<vec3>& p = positions[c];
-          const size_t i = mid * n + j;
-          largest = std::max(largest, glm::length(p[i + n] - 2.0f * p[i] + p[i - n]));
-        }
+        for (size_t j = 0; j < n; ++j) largest = std::max(largest, acceleration(positions[c], mid * n + j));
       lib.frame_acceleration_m.push_back(largest);
       if (f >= 1 && f + 1 < frames) inner_frames.push_back(largest);
     }
@@ -63,7 +60,7 @@ void compute_pop_budget(MotionLibrary& lib) {
           const size_t i = mid * n + j;
           const vec3 speed = 0.5f * (p[i + n] - p[i - n]);
           const float ground_speed = std::hypot(speed.x, speed.z);
-          const float room = std::max(0.0f, budget - glm::length(p[i + n] - 2.0f * p[i] + p[i - n]));
+          const float room = std::max(0.0f, budget - acceleration(p, i));
           if (ground_speed > 1e-6f) limit = std::min(limit, room / (2.0f * ground_speed));
         }
       lib.steer_limit_rad.push_back(std::max(limit, kSteerLimitFloor_rad));
