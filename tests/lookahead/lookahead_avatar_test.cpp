@@ -354,11 +354,11 @@ int expect_steering_adds_no_pop(const MotionLibrary& lib) {
     ControlInput in;
     in.camera_dir = vec2(-std::sin(key), std::cos(key));  // camera yaw 0: the world direction (sin, cos)
     PoseStage stage(lib);
-    std::vector<std::vector<vec3>> played;
+    std::vector<std::vector<vec3>> shown_poses;
     std::vector<int> frames;
     for (;;) {
-      const std::span<const vec3> shown = stage.update(avatar.playback(), played.empty() ? 0.0f : 1.0f / 30.0f);
-      played.emplace_back(shown.begin(), shown.end());
+      const std::span<const vec3> shown = stage.update(avatar.playback(), shown_poses.empty() ? 0.0f : 1.0f / 30.0f);
+      shown_poses.emplace_back(shown.begin(), shown.end());
       frames.push_back(seg.first_frame + avatar.playback().frame);
       avatar.set_input(in);
       avatar.grow(GrowBudget::expansions(100));
@@ -366,12 +366,12 @@ int expect_steering_adds_no_pop(const MotionLibrary& lib) {
       if (r.segment_changed || avatar.playback().segment != s) break;
       steered += r.steered;
     }
-    for (size_t k = 1; k + 1 < played.size(); ++k) {
+    for (size_t k = 1; k + 1 < shown_poses.size(); ++k) {
       float own = 0.0f;
       for (size_t i = k - 1; i <= k + 1; ++i) own = std::max(own, lib.frame_acceleration_at(seg.clip, frames[i]));
       if (own > 0.7f * lib.pop_threshold_m) continue;
       float largest = 0.0f;
-      for (size_t j = 0; j < n; ++j) largest = std::max(largest, glm::length(played[k + 1][j] - 2.0f * played[k][j] + played[k - 1][j]));
+      for (size_t j = 0; j < n; ++j) largest = std::max(largest, glm::length(shown_poses[k + 1][j] - 2.0f * shown_poses[k][j] + shown_poses[k - 1][j]));
       EXPECT_LE(largest, lib.pop_threshold_m) << seg.name << " frame " << frames[k] - seg.first_frame << ": own "
                                               << own * 1000.0f << " mm/frame^2";
       ++checked;
@@ -591,8 +591,7 @@ TEST(LookaheadAvatar, WhereIdleDoesNotFitAtTheEndItStandsBackNotFrozenInTheLastP
   ASSERT_GE(walk, 0);
   const Placement start{vec2(0.0f), 0.0f};  // facing +Z
   const Placement end = motion_library_root_at(lib, walk, lib.graph.segments[walk].num_frames(), start);
-  LookaheadAvatar avatar(lib, open_field(), MotionTreeConfig{}, walk, start);
-  const int idle = avatar.fallback_segment();
+  const int idle = find_fallback_segment(lib);
   ASSERT_GE(idle, 0);
   float front = 0.0f;  // the standing body's reach ahead of its root
   for (const BodyVolume& v : lib.volumes(idle)) front = std::max(front, v.center_m.y + std::abs(v.half_axis_m.y) + v.radius_m);
