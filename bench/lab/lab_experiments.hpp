@@ -6,6 +6,7 @@
 #include "lab/motion_quality.hpp"
 #include "library_build/library_source.hpp"
 #include "library/motion_library.hpp"
+#include "math/percentile.hpp"
 #include "lookahead/motion_tree.hpp"
 #include "scripted/recording.hpp"
 #include "scripted/replay.hpp"
@@ -275,8 +276,7 @@ NavigationResult run_navigation(const LabScene& lab, const LabOptions& options,
 NavigationResult run_closed_loop_navigation(const LabScene& lab, const LabOptions& options,
                                             const TransitionStatistics& statistics);
 
-/// Percentile p in [0, 100] by linear interpolation between order statistics (0 when empty).
-double percentile(std::vector<double> samples, double p);
+using foresight::percentile;  // math/percentile.hpp: the lab's figures and the benches' are one kind
 
 // ---- Everything -----------------------------------------------------------------------------
 

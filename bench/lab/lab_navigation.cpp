@@ -13,15 +13,6 @@ using namespace detail;
 
 // ---- Navigation efficiency and responsiveness -----------------------------------------------
 
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = std::clamp(p, 0.0, 100.0) / 100.0 * static_cast<double>(v.size() - 1);
-  const size_t i = static_cast<size_t>(std::floor(pos));
-  const size_t j = std::min(i + 1, v.size() - 1);
-  return v[i] + (pos - static_cast<double>(i)) * (v[j] - v[i]);
-}
-
 // The "look-ahead 1 + steering" row steers the root (LookaheadAvatar,
 // MotionTreeConfig::steer_rad_per_s) at kLabSteerDegPerS.
 std::vector<ControllerSpec> lab_controllers(const MotionTreeConfig& base) {

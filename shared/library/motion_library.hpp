@@ -57,7 +57,8 @@ struct MotionLibrary : MotionLibrarySource {
   std::vector<float> frame_acceleration_m;
   /// ...the value 99.9 % of the inner frames' stay under: a shown frame over it is a pop...
   float pop_threshold_m = 0.0f;
-  /// ...and how far root steering may turn the motion on that frame, rad (library_build/pop_budget.hpp).
+  /// ...and how far root steering may turn the motion on that frame, rad (the least over the frame
+  /// and its neighbours, whose accelerations it changes; library_build/pop_budget.hpp).
   std::vector<float> steer_limit_rad;
   std::vector<SegmentMotion> segment_motion;
   /// Per segment: body volumes of frames [first_frame, end_frame] (end inclusive), in the

@@ -22,6 +22,20 @@ constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where
 constexpr float kHanging_m = 0.02f;        // a planted part this far over the ground under it is not on it
 constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to its pose's height is down
 
+// The largest share in [0, 1] of a move that show(share) shows without blocked() (bisection, 8
+// halvings: within 0.4 %); the pose is left showing that share, which is returned.
+template <typename Show, typename Blocked>
+float show_clear_share(Show&& show, Blocked&& blocked) {
+  float clear = 0.0f, stopped = 1.0f;
+  for (int i = 0; i < 8; ++i) {
+    const float mid = 0.5f * (clear + stopped);
+    show(mid);
+    (blocked() ? stopped : clear) = mid;
+  }
+  show(clear);
+  return clear;
+}
+
 // Bollo's inertialization (GDC 2018, "Inertialization: High-Performance Animation Transitions in
 // Gears of War"): an offset that starts at x0 changing at v0 (with no acceleration) and dies out
 // at T with its rate and acceleration (a quintic); at(t) and rate_at(t), t into it.
@@ -198,14 +212,9 @@ void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
   turn_about(pivot, 1.0f);
   if (obstacles_ == nullptr || !shown_into_obstacle(0, shown_.size() - 1)) return;
   // The lag would show a joint (a hand swinging behind the turn) in a box the played pose is
-  // clear of: show as much of it as stays clear (bisection), and go on from there.
-  float clear = 0.0f, blocked = 1.0f;
-  for (int i = 0; i < 8; ++i) {
-    const float mid = 0.5f * (clear + blocked);
-    turn_about(pivot, mid);
-    (shown_into_obstacle(0, shown_.size() - 1) ? blocked : clear) = mid;
-  }
-  turn_about(pivot, clear);
+  // clear of: show as much of it as stays clear, and go on from there.
+  const float clear = show_clear_share([&](float share) { turn_about(pivot, share); },
+                                       [&] { return shown_into_obstacle(0, shown_.size() - 1); });
   for (TurnLag& lag : turn_lag_) lag.offset_rad *= clear, lag.speed_rad_s *= clear;
 }
 
@@ -628,17 +637,12 @@ void PoseStage::reach_clear(int foot, vec3 offset) {
   std::copy(shown_.begin() + static_cast<long>(knee), shown_.begin() + static_cast<long>(toe_end) + 1, leg.begin());
   reach(foot, offset);
   if (obstacles_ == nullptr || !shown_into_obstacle(knee, toe_end)) return;
-  const auto reach_share = [&](float share) {
-    std::copy(leg.begin(), leg.end(), shown_.begin() + static_cast<long>(knee));
-    reach(foot, share * offset);
-  };
-  float clear = 0.0f, blocked = 1.0f;
-  for (int i = 0; i < 8; ++i) {
-    const float mid = 0.5f * (clear + blocked);
-    reach_share(mid);
-    (shown_into_obstacle(knee, toe_end) ? blocked : clear) = mid;
-  }
-  reach_share(clear);
+  show_clear_share(
+      [&](float share) {
+        std::copy(leg.begin(), leg.end(), shown_.begin() + static_cast<long>(knee));
+        reach(foot, share * offset);
+      },
+      [&] { return shown_into_obstacle(knee, toe_end); });
 }
 
 // A foot the clip plants while it is still shown moving fast (steering sweeps a landing foot

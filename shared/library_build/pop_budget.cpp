@@ -1,24 +1,13 @@
 #include "library_build/pop_budget.hpp"
 
 #include "anim/fk.hpp"
+#include "math/percentile.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace foresight {
-namespace {
-
-// Linear interpolation between ranks (as the benches' percentiles).
-float percentile(std::vector<float> v, double p) {
-  if (v.empty()) return 0.0f;
-  std::sort(v.begin(), v.end());
-  const double pos = p / 100.0 * static_cast<double>(v.size() - 1);
-  const size_t i = static_cast<size_t>(pos);
-  const size_t j = std::min(i + 1, v.size() - 1);
-  return static_cast<float>(v[i] + (pos - static_cast<double>(i)) * (v[j] - v[i]));
-}
-
-}  // namespace
 
 void compute_pop_budget(MotionLibrary& lib) {
   const size_t n = static_cast<size_t>(lib.num_joints());
@@ -30,7 +19,7 @@ void compute_pop_budget(MotionLibrary& lib) {
   const auto acceleration = [n](const std::vector<vec3>& p, size_t i) { return glm::length(p[i + n] - 2.0f * p[i] + p[i - n]); };
 
   lib.frame_acceleration_m.clear();
-  std::vector<float> inner_frames;
+  std::vector<double> inner_frames;
   for (size_t c = 0; c < lib.clips.size(); ++c) {
     const int frames = lib.clips[c].num_frames;
     for (int f = 0; f < frames; ++f) {
@@ -42,10 +31,10 @@ void compute_pop_budget(MotionLibrary& lib) {
       if (f >= 1 && f + 1 < frames) inner_frames.push_back(largest);
     }
   }
-  lib.pop_threshold_m = percentile(inner_frames, 99.9);
+  lib.pop_threshold_m = static_cast<float>(percentile(std::move(inner_frames), 99.9));
 
   // Per frame, the fastest turn that keeps every joint's own acceleration plus 2 x rate x its
-  // ground speed within the budget; then floored and ramped.
+  // ground speed within the budget; then floored, ramped and the least of its neighbours'.
   const float budget = kSteerBudgetShare * lib.pop_threshold_m;
   lib.steer_limit_rad.clear();
   for (size_t c = 0; c < lib.clips.size(); ++c) {
@@ -68,6 +57,12 @@ void compute_pop_budget(MotionLibrary& lib) {
     float* l = lib.steer_limit_rad.data() + first;
     for (int f = 1; f < frames; ++f) l[f] = std::min(l[f], l[f - 1] + kSteerLimitRamp_rad);
     for (int f = frames - 2; f >= 0; --f) l[f] = std::min(l[f], l[f + 1] + kSteerLimitRamp_rad);
+    // A frame's shown acceleration spans its neighbours: each frame keeps the least of the three
+    // (the clip's ends their own and their one neighbour's).
+    const std::vector<float> ramped(l, l + frames);
+    for (int f = 0; f < frames; ++f)
+      l[f] = std::min({ramped[static_cast<size_t>(std::max(f - 1, 0))], ramped[static_cast<size_t>(f)],
+                       ramped[static_cast<size_t>(std::min(f + 1, frames - 1))]});
   }
 }
 

@@ -168,11 +168,10 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
   if (!way_off && error * way_error < 0.0f && std::abs(way_error) > kWayNearKey_rad) return false;
   const float sideways = going ? std::abs(wrap_angle(std::atan2(way.x, way.y) - now.heading_rad)) : 0.0f;
   const float share = sideways > kSidewaysFrom_rad && sideways < kSidewaysTo_rad ? kSidewaysSteerShare : 1.0f;
-  // No faster than the clip frames about this one leave room for (a frame's shown acceleration
-  // spans its neighbours): a turn must not push a joint over the library's pop threshold.
-  float step = frame_turn(share * tree_.config().steer_rad_per_s);
-  for (int f = seg.first_frame + playback_.frame - 1; f <= seg.first_frame + playback_.frame + 1; ++f)
-    step = std::min(step, library_.steer_limit_at(seg.clip, f));
+  // No faster than the clip frames about this one leave room for: a turn must not push a joint
+  // over the library's pop threshold (MotionLibrary::steer_limit_rad).
+  const float step = std::min(frame_turn(share * tree_.config().steer_rad_per_s),
+                              library_.steer_limit_at(seg.clip, seg.first_frame + playback_.frame));
   return rotate_playing(std::clamp(error, -step, step), veto, true);
 }
 
@@ -400,15 +399,17 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   };
   static constexpr float kTurns_rad[] = {0.0f, 0.785f, -0.785f, 1.571f, -1.571f, 3.142f};
   const vec2 back = rotate_ground(vec2(0.0f, -1.0f), here.heading_rad);
-  for (const int idle : {crouching ? crouch_fallback_segment_ : -1, fallback_segment_})
+  for (const int idle : {crouching ? crouch_fallback_segment_ : -1, fallback_segment_}) {
+    if (idle < 0) continue;
     for (const float turn : kTurns_rad)
-      for (float d = 0.0f; idle >= 0 && d <= kStandSearch_m + 1e-4f; d += kStandSearchStep_m) {
+      for (float d = 0.0f; d <= kStandSearch_m + 1e-4f; d += kStandSearchStep_m) {
         const Placement at{here.pos_m + back * d, wrap_angle(here.heading_rad + turn)};
         if (!idle_fits(idle, at)) continue;
         playback_ = {idle, 0, at, -1};
         tree_.reset(idle, at);
         return result;
       }
+  }
   playback_.frame = library_.graph.segments[playback_.segment].num_frames() - 1;
   tree_.reset(playback_.segment, playback_.segment_start, playback_.incoming_transition);
   return result;

@@ -192,6 +192,17 @@ SteeredFeet feet_through_a_sharp_turn(const MotionLibrary& lib, int segment, flo
   return out;
 }
 
+// Open ground with a post 1 cm square and 2 m high at `post`: something only a lagging joint
+// can be shown in.
+void build_post(vec2 post, CollisionWorld& world) {
+  Scene scene;
+  scene.bounds = {vec2(-20.0f), vec2(20.0f)};
+  scene.boxes.push_back({"post", BoxKind::kWall, vec3(post.x - 0.005f, 0.0f, post.y - 0.005f),
+                         vec3(post.x + 0.005f, 2.0f, post.y + 0.005f)});
+  std::string error;
+  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+}
+
 // A foot let go of (lifted, or stepping) is shown at an offset from the pose's that dies out. Where
 // that would show it in a box the played foot clears (traced in the obstacles: a swinging toe 2 cm
 // into a crate), only the share of the offset that stays clear is shown. A walking step steered
@@ -230,13 +241,8 @@ TEST(PoseStage, AFootLetGoOfIsNotShownInABoxThePlayedFootClears) {
     }
   });
   ASSERT_GT(farthest, 0.04f) << "a foot let go of is shown away from its played place";
-  Scene scene;
-  scene.bounds = {vec2(-20.0f), vec2(20.0f)};
-  scene.boxes.push_back({"post", BoxKind::kWall, vec3(post.x - 0.005f, 0.0f, post.y - 0.005f),
-                         vec3(post.x + 0.005f, 2.0f, post.y + 0.005f)});
   CollisionWorld world;
-  std::string error;
-  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_NO_FATAL_FAILURE(build_post(post, world));
   int shown_in_post = 0, checked = 0;
   play(nullptr, [&](int, const PoseStage& stage) {
     shown_in_post += shown_joints_collide(lib, world, stage.shown()) && !shown_joints_collide(lib, world, stage.animated());
@@ -759,13 +765,8 @@ TEST(PoseStage, TheEasedTurnShowsNoJointInABoxThePlayedPoseClears) {
   const vec2 lag = ground(lagged[far]) - ground(played[far]);
   ASSERT_GT(glm::length(lag), 0.04f);
   const vec2 post = ground(lagged[far]) + 0.05f * glm::normalize(lag);  // 1 cm square, 2 m high
-  Scene scene;
-  scene.bounds = {vec2(-20.0f), vec2(20.0f)};
-  scene.boxes.push_back({"post", BoxKind::kWall, vec3(post.x - 0.005f, 0.0f, post.y - 0.005f),
-                         vec3(post.x + 0.005f, 2.0f, post.y + 0.005f)});
   CollisionWorld world;
-  std::string error;
-  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_NO_FATAL_FAILURE(build_post(post, world));
   ASSERT_TRUE(shown_joints_collide(lib, world, lagged)) << "without the boxes the lag is shown in the post";
   ASSERT_FALSE(shown_joints_collide(lib, world, played)) << "the played pose clears it";
 

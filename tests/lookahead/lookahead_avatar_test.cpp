@@ -2,6 +2,7 @@
 
 #include "library/pose_check.hpp"
 #include "library/pose_stage.hpp"
+#include "library/steerability.hpp"
 #include "scripted/recording_generator.hpp"
 #include "scripted/replay.hpp"
 #include "lookahead/scene_path.hpp"
@@ -185,8 +186,7 @@ void expect_steering_turns_the_step_of_the_frame_the_key_turns(const MotionLibra
     // dash, which turns 3 deg a frame).
     const Segment& seg = lib.graph.segments[static_cast<size_t>(segment)];
     const int at = seg.first_frame + avatar.playback().frame;
-    const float allowed = std::min({config.steer_rad_per_s / 30.0f, lib.steer_limit_at(seg.clip, at - 1),
-                                    lib.steer_limit_at(seg.clip, at), lib.steer_limit_at(seg.clip, at + 1)});
+    const float allowed = std::min(config.steer_rad_per_s / 30.0f, lib.steer_limit_at(seg.clip, at));
     ++steered;
     // This frame's step against the frame's before (the stride's sway turns it a degree or two).
     const vec2 step = avatar.root().pos_m - before, last = before - earlier;
@@ -289,8 +289,7 @@ int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
     if (!r.steered || avatar.playback().segment != s) continue;
     const float turned = std::abs(wrap_angle(avatar.playback().segment_start.heading_rad - before));
     // Where the clip frames leave steering less room than that, the pop budget decides (below).
-    float room = kPi;
-    for (int f = seg.first_frame; f <= seg.first_frame + 2; ++f) room = std::min(room, lib.steer_limit_at(seg.clip, f));
+    const float room = lib.steer_limit_at(seg.clip, seg.first_frame + 1);
     if (room < (is_sideways ? full * LookaheadAvatar::kSidewaysSteerShare : full)) continue;
     if (is_sideways) {
       ++sideways;
@@ -585,9 +584,7 @@ TEST(LookaheadAvatar, WithNoBudgetItFallsBackToIdleAndNeverMoves) {
 // its narrower running body clears). The avatar used to hold that segment's last frame for ever;
 // it now stands where idle fits nearest, back along its way. Here a wall's face is put 10 cm
 // inside the standing body's front at the walk's end, with no budget, so the walk has no child.
-TEST(LookaheadAvatar, WhereIdleDoesNotFitAtTheEndItStandsBackNotFrozenInTheLastPose) {
-  const auto& lib = default_library();
-  const int walk = lib.graph.find_segment("walk_l");
+void expect_stands_back_where_idle_does_not_fit(const MotionLibrary& lib, int walk) {
   ASSERT_GE(walk, 0);
   const Placement start{vec2(0.0f), 0.0f};  // facing +Z
   const Placement end = motion_library_root_at(lib, walk, lib.graph.segments[walk].num_frames(), start);
@@ -620,6 +617,19 @@ TEST(LookaheadAvatar, WhereIdleDoesNotFitAtTheEndItStandsBackNotFrozenInTheLastP
   EXPECT_LT(glm::length(moved), LookaheadAvatar::kStandSearch_m + 0.01f);
   EXPECT_LT(glm::dot(moved, ahead), 0.0f) << "it stands back along its way";
   EXPECT_NEAR(wrap_angle(placed.root().heading_rad - end.heading_rad), 0.0f, 0.01f);
+}
+
+TEST(LookaheadAvatar, WhereIdleDoesNotFitAtTheEndItStandsBackNotFrozenInTheLastPose) {
+  const MotionLibrary& lib = default_library();
+  expect_stands_back_where_idle_does_not_fit(lib, lib.graph.find_segment("walk_l"));
+}
+
+// The same on the Bandai capture in inches under a dummy root, whose idle is derived from it.
+TEST(LookaheadAvatar, OnAForeignCaptureWhereIdleDoesNotFitItStandsBack) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_locomotion_library(lib));
+  expect_stands_back_where_idle_does_not_fit(lib, walking_segment(lib));
 }
 
 TEST(LookaheadAvatar, BrokenInputIsRefusedCountedAndMeansStop) {
