@@ -182,6 +182,8 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     r.added_pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.added_pops) / r.minutes : 0.0;
     r.response_ms_p50 = percentile(acc.response_ms, 50);
     r.response_ms_p95 = percentile(acc.response_ms, 95);
+    r.responses = static_cast<int64_t>(acc.response_ms.size());
+    r.responses_over_aim = std::count_if(acc.response_ms.begin(), acc.response_ms.end(), [](double ms) { return ms > kResponseAim_ms; });
     r.shown_response_ms_p50 = percentile(acc.shown_response_ms, 50);
     r.shown_response_ms_p95 = percentile(acc.shown_response_ms, 95);
     r.collisions = std::max(r.played_collisions, r.shown_collisions);
@@ -210,6 +212,12 @@ std::string motion_quality_text(const std::vector<MotionQualityResult>& results)
                   static_cast<long long>(r.collisions), static_cast<long long>(r.discontinuities));
     text += line;
   }
+  for (const MotionQualityResult& r : results) {
+    std::snprintf(line, sizeof line, "  %s: %lld of %lld responses over %.0f ms (a p95 within it allows %lld)\n",
+                  r.controller.c_str(), static_cast<long long>(r.responses_over_aim), static_cast<long long>(r.responses),
+                  kResponseAim_ms, static_cast<long long>(r.responses / 20));
+    text += line;
+  }
   for (const MotionQualityResult& r : results)
     if (r.shown_collisions != r.played_collisions) {
       std::snprintf(line, sizeof line, "  %s: %lld shown frames collide, %lld played\n", r.controller.c_str(),
@@ -233,6 +241,8 @@ nlohmann::json motion_quality_json(const MotionQualityResult& r) {
           {"response_ms_p95", rounded(r.response_ms_p95, 1)},
           {"shown_response_ms_p50", rounded(r.shown_response_ms_p50, 1)},
           {"shown_response_ms_p95", rounded(r.shown_response_ms_p95, 1)},
+          {"responses", r.responses},
+          {"responses_over_250ms", r.responses_over_aim},
           {"collisions", r.collisions},
           {"goals_reached_share", rounded(r.goals_reached_share, 4)}};
 }

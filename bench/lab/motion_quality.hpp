@@ -54,6 +54,10 @@ struct MotionQualityOptions {
   int64_t expansions_per_frame = 200;
 };
 
+/// The response aim: a p95 of at most 250 ms allows 5 % of the responses over it (the
+/// count that decides which side of 250 ms a p95 of many seeds falls).
+inline constexpr double kResponseAim_ms = 250.0;
+
 struct MotionQualityResult {
   std::string controller;
   bool pose_stage = false;
@@ -76,6 +80,8 @@ struct MotionQualityResult {
   double response_ms_p95 = 0.0;
   double shown_response_ms_p50 = 0.0;  ///< Of the shown pelvis (ResponseMeter).
   double shown_response_ms_p95 = 0.0;
+  int64_t responses = 0;              ///< Command changes followed (the root's).
+  int64_t responses_over_aim = 0;     ///< Those slower than kResponseAim_ms: a p95 within the aim allows 5 %.
   int64_t played_collisions = 0;     ///< Frames whose played pose overlaps the scene (ReplayRun's FK check).
   int64_t shown_collisions = 0;      ///< Frames whose shown pose (after the stage) does (shown_joints_collide).
   int64_t collisions = 0;            ///< The larger of the two.
