@@ -132,6 +132,7 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   previous_frame_pose_.resize(n);
   landing_.resize(n);
   unturned_.resize(n);
+  offset_now_.resize(n);
   rotations_.resize(n);
   turn_share_.resize(n);
   const bool canonical = library.num_joints() == kCanonJointCount;
@@ -499,8 +500,20 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
   }
   offset_left_s_ = std::max(0.0f, offset_left_s_ - dt_s);
   const float T = config_.inertialize_s;
-  if (offset_left_s_ > 0.0f)
-    for (size_t j = 0; j < n; ++j) shown_[j] += Inertialized(offset_[j], offset_rate_[j], T).at(T - offset_left_s_);
+  if (offset_left_s_ > 0.0f) {
+    for (size_t j = 0; j < n; ++j) offset_now_[j] = Inertialized(offset_[j], offset_rate_[j], T).at(T - offset_left_s_);
+    const auto show_offset = [&](float share) {
+      for (size_t j = 0; j < n; ++j) shown_[j] = animated_[j] + share * offset_now_[j];
+    };
+    show_offset(1.0f);
+    // An offset carried on would show a joint in a box the played pose is clear of (a switch's
+    // carried hand swinging on 1 cm into the wall the new segment turns along: Bandai maze, measured):
+    // show as much of it as stays clear, and go on from there (the offset is linear in its start).
+    if (obstacles_ != nullptr && shown_into_obstacle(0, n - 1)) {
+      const float clear = show_clear_share(show_offset, [&] { return shown_into_obstacle(0, n - 1); });
+      for (size_t j = 0; j < n; ++j) offset_[j] *= clear, offset_rate_[j] *= clear;
+    }
+  }
   // Each joint's offset is its own: the legs get their bones' lengths back by IK to where the
   // offset ankles are (measured: without it a fallback on the Bandai capture showed a shin 7 cm
   // short for a few frames).

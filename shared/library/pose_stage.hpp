@@ -12,7 +12,8 @@
 //     transition (whose blend carries the pose on, not its rate) carries the upper body's rate
 //     on: the spine, arms and head are shown going on as the segment left would have, and the
 //     difference dies out over `inertialize_s` (Bollo's inertialization; the legs are the foot
-//     locks', the pelvis carries them).
+//     locks', the pelvis carries them). With obstacles (set_obstacles), an offset that would show
+//     a joint in a box the played pose is clear of is cut to the share that stays clear.
 //  2. Turn easing. Root steering turns the whole body about the root at up to 540 deg/s, starting
 //     and stopping at full speed: a hand 0.4 m from the root would jump 0.13 m a frame. The
 //     steering's part of the turn (the segment's start rotated while the segment plays on) is
@@ -119,7 +120,8 @@ class PoseStage {
   /// The ground the feet are adapted to (4. above); nullptr (the default): the clips' own flat
   /// floor, as authored. The terrain must outlive the stage or the next call.
   void set_ground(const Terrain* terrain) { ground_ = terrain; }
-  /// The boxes the eased turn must not show a joint in (2. above); nullptr (the default): none.
+  /// The boxes the offsets, the eased turn and a let-go foot must not show a joint in where the
+  /// played pose is clear of them (1., 2., 5. above); nullptr (the default): none.
   /// Must outlive the stage or the next call.
   void set_obstacles(const CollisionWorld* world) { obstacles_ = world; }
 
@@ -173,6 +175,7 @@ class PoseStage {
   std::vector<vec3> offset_rate_, sampled_;  ///< The inertialized offset's starting rate; a pose carry_switch samples.
   std::vector<vec3> frame_pose_, previous_frame_pose_;  ///< The sampled pose on the frame (no frame_alpha): now, last update.
   std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
+  std::vector<vec3> offset_now_;  ///< The inertialized offset this frame (inertialize).
   std::vector<quat> rotations_;
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;

@@ -583,6 +583,58 @@ TEST(PoseStage, AJumpIsInertializedNotShown) {
   EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
 }
 
+// An inertialized offset (a jump here; traced as a switch's carried hand: Bandai maze, a forearm
+// 1 cm into the wall the new segment turns along) would show a joint in a box the played pose
+// clears: only the share of the offset that stays clear is shown, and the rest still dies out
+// smoothly. An idle jumped 1 m sideways, with a thin post just behind the body shown on its way.
+TEST(PoseStage, AnInertializedOffsetIsNotShownInABoxThePlayedPoseClears) {
+  const MotionLibrary& lib = library();
+  const int idle = lib.graph.find_segment("idle");
+  ASSERT_GE(idle, 0);
+  PoseStageConfig config;
+  config.foot_locking = false;  // the offsets alone
+  // Plays the jump with `world`'s boxes; calls `at` with the stage after each frame.
+  const auto play = [&](const CollisionWorld* world, const std::function<void(int, const PoseStage&)>& at) {
+    PoseStage stage(lib, config);
+    stage.set_obstacles(world);
+    PlaybackState s{idle, 0, Placement{}, -1};
+    stage.update(s, 0.0f);
+    s.segment_start = Placement{vec2(1.0f, 0.0f), 0.0f};
+    for (int f = 1; f < 12; ++f) {
+      s.frame = f;
+      stage.update(s, 1.0f / 30.0f);
+      at(f, stage);
+    }
+  };
+  vec2 post(0.0f);
+  play(nullptr, [&](int f, const PoseStage& stage) {
+    if (f != 2) return;
+    const std::span<const vec3> shown = stage.shown();
+    const size_t trailing = static_cast<size_t>(std::min_element(shown.begin(), shown.end(), [](vec3 a, vec3 b) { return a.x < b.x; }) - shown.begin());
+    post = ground(shown[trailing]) - vec2(0.05f, 0.0f);  // 5 cm behind the body, which moves on in +x
+  });
+  CollisionWorld world;
+  ASSERT_NO_FATAL_FAILURE(build_post(post, world));
+  int shown_in_post = 0;
+  play(nullptr, [&](int, const PoseStage& stage) {
+    shown_in_post += shown_joints_collide(lib, world, stage.shown()) && !shown_joints_collide(lib, world, stage.animated());
+  });
+  ASSERT_GT(shown_in_post, 0) << "without the boxes the offset shows the body in the post";
+  float previous_x = 0.0f;
+  int checked = 0;
+  play(&world, [&](int f, const PoseStage& stage) {
+    const std::span<const vec3> shown = stage.shown();
+    if (f > 1) {
+      EXPECT_LT(std::abs(shown[0].x - previous_x), 0.33f) << "frame " << f << ": in steps, not a jump";
+    }
+    previous_x = shown[0].x;
+    if (shown_joints_collide(lib, world, stage.animated())) return;  // the clip's own
+    ++checked;
+    EXPECT_FALSE(shown_joints_collide(lib, world, shown)) << "frame " << f;
+  });
+  EXPECT_GT(checked, 5);
+}
+
 // A jump from mid-stride (a foot in the air) to a stand that plants both feet, as a fallback to
 // idle is: the decaying offset brings the raised foot down over inertialize_s, and while it is
 // still up it is landing, not planted (not held, not counted on the ground); once down it is.
