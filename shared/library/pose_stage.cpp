@@ -627,7 +627,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       f.joint = joint;
       f.stepping = true;
       let_go_from(f, offset, rate);
-      reach(foot, offset);
+      reach(foot, offset, true, true);
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }
@@ -641,19 +641,20 @@ void PoseStage::lock_foot(int foot, float dt_s) {
   if (f.release_left_s > 0.0f) reach_clear(foot, let_go_offset(f, f.release_left_s));
 }
 
-// A foot let go of is shown at an offset from the pose's: where that would show the leg in a box
-// the played one is clear of (a swinging toe 2 cm into a crate beside the path, measured), only
-// the share of the offset that stays clear is shown (bisection, as the eased turn does).
+// A foot let go of is shown at an offset from the pose's, on a leg no straighter than the pose's
+// (reach's as_bent): where that would show the leg in a box the played one is clear of (a
+// swinging toe 2 cm into a crate beside the path, measured), only the share of the offset that
+// stays clear is shown (bisection, as the eased turn does).
 void PoseStage::reach_clear(int foot, vec3 offset) {
   const size_t knee = static_cast<size_t>(foot == 0 ? kCanonLeftLeg : kCanonRightLeg), toe_end = knee + 3;
   std::array<vec3, 4> leg;
   std::copy(shown_.begin() + static_cast<long>(knee), shown_.begin() + static_cast<long>(toe_end) + 1, leg.begin());
-  reach(foot, offset);
+  reach(foot, offset, true, true);
   if (obstacles_ == nullptr || !shown_into_obstacle(knee, toe_end)) return;
   show_clear_share(
       [&](float share) {
         std::copy(leg.begin(), leg.end(), shown_.begin() + static_cast<long>(knee));
-        reach(foot, share * offset);
+        reach(foot, share * offset, true, true);
       },
       [&] { return shown_into_obstacle(knee, toe_end); });
 }
@@ -729,8 +730,9 @@ void PoseStage::push_off(int foot, vec3 ball_at) {
 
 // Moves the foot by `offset` (the ankle, and everything below it unless !carry_foot) and bends the
 // leg to reach it: the knee stays in the plane of hip, new ankle and the animated knee, at the
-// bone lengths.
-void PoseStage::reach(int foot, vec3 offset, bool carry_foot) {
+// bone lengths. With `as_bent`, the leg is not shown straighter than the animation's: a foot in
+// the air is not held to its offset at the cost of the knee.
+void PoseStage::reach(int foot, vec3 offset, bool carry_foot, bool as_bent) {
   const size_t hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
   const size_t knee = hip + 1, ankle = hip + 2;
   const vec3 h = shown_[hip], k = shown_[knee], a = shown_[ankle];
@@ -744,7 +746,13 @@ void PoseStage::reach(int foot, vec3 offset, bool carry_foot) {
   vec3 target = a + offset;
   vec3 to = target - h;
   float d = glm::length(to);
-  const float longest = 0.995f * (upper + lower), shortest = std::abs(upper - lower) + 1e-3f;
+  // Near straight, a few mm more reach swings the knee by cm: a let-go foot's offset (held back
+  // where it was planted, the body gone on) kept the swinging leg straight while the animation's
+  // bent, then the knee caught up in one frame, 121-133 mm/frame^2 (most built-in pops in the
+  // maze's walk turns and on the doorways, measured: docs/MOTION_QUALITY.md).
+  const float shortest = std::abs(upper - lower) + 1e-3f;
+  float longest = 0.995f * (upper + lower);
+  if (as_bent) longest = std::clamp(glm::length(animated_[ankle] - animated_[hip]), shortest, longest);
   if (d < 1e-4f) return;
   const vec3 dir = to / d;
   d = std::clamp(d, shortest, longest);

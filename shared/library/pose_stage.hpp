@@ -62,7 +62,9 @@
 //     foot the clip plants while the turn still sweeps it is put down short of where the pose
 //     lands it, so it comes to rest over two frames instead of stopping dead in one
 //     (touch_down). A held ball the leg cannot reach any more (the body gone on at push-off)
-//     lifts the heel, the foot turning about the ball, instead of being dragged.
+//     lifts the heel, the foot turning about the ball, instead of being dragged. A foot in the
+//     air (let go of, or stepping) is never shown on a leg straighter than the pose's: its
+//     offset gives way first (near straight, the knee would swing cm for mm of reach).
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"
@@ -163,7 +165,7 @@ class PoseStage {
   void touch_down(int foot, int joint, vec3& at, float dt_s) const;
   vec3 let_go_offset(const FootLock& lock, float left_s) const;
   void let_go_from(FootLock& lock, vec3 offset, vec2 rate) const;
-  void reach(int foot, vec3 offset, bool carry_foot = true);
+  void reach(int foot, vec3 offset, bool carry_foot = true, bool as_bent = false);
   void reach_clear(int foot, vec3 offset);
   void push_off(int foot, vec3 ball_at);
 

@@ -450,6 +450,64 @@ TEST(PoseStage, OnACaptureOfAnotherUnitAndRootAFootLetGoOfWhileSteeringSetsOffFr
   EXPECT_LT(step_starts[step_starts.size() / 2], 0.045f) << "median step start, m/frame^2";
 }
 
+// Every walk of `lib` played into its successor and steered at 540 deg/s over its first frames (the
+// body turns away from a planted foot, which is then let go of): over the frames a foot is in the
+// air, how far its leg is shown straighter than the pose's (m, the worst).
+struct AirborneLegs {
+  float straighter_m = 0.0f;
+  int airborne_frames = 0;
+};
+AirborneLegs airborne_legs_through_steered_walks(const MotionLibrary& lib, float turn_rad = 0.314f) {
+  AirborneLegs out;
+  for (const Walk& walk : walks(lib)) {
+    const Transition& t = lib.graph.transitions[static_cast<size_t>(walk.transition)];
+    const int n = lib.graph.segments[static_cast<size_t>(t.from)].num_frames();
+    const int frames = n + lib.graph.segments[static_cast<size_t>(t.to)].num_frames();
+    PoseStage stage(lib, {});
+    PlaybackState s{t.from, 0, Placement{}, -1};
+    for (int f = 0; f < frames; ++f) {
+      if (f == n) playback_take(lib, s, walk.transition);
+      s.frame = f < n ? f : f - n;
+      if (f >= 1 && f <= 5) s.segment_start = playback_turned_start(lib, s, turn_rad);
+      stage.update(s, f == 0 ? 0.0f : 1.0f / 30.0f);
+      const std::span<const vec3> shown = stage.shown(), played = stage.animated();
+      for (int foot = 0; foot < 2; ++foot) {
+        if (stage.contact() & (foot_heel_bit(foot) | foot_ball_bit(foot))) continue;
+        const auto hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
+        out.straighter_m = std::max(out.straighter_m, glm::length(shown[hip + 2] - shown[hip]) -
+                                                          glm::length(played[hip + 2] - played[hip]));
+        ++out.airborne_frames;
+      }
+    }
+  }
+  return out;
+}
+
+// A foot in the air is not shown on a leg straighter than the pose's. A foot let go of is shown
+// at an offset that dies out (held back where it was planted while the body turned on): its leg
+// was kept straight while the pose's bent, then the knee caught up in one frame (the maze's walk
+// turns and side steps: knees at 121-133 mm/frame^2, most of the built-in library's pops). Here,
+// before: legs up to 2.7 (0.1 rad a frame) and 6.2 cm (0.314) straighter, and 3.1 cm on the
+// capture. (The knee's acceleration is not asserted here: these walks' own knees reach 115-121
+// mm/frame^2 either way; the bench's pops are the measure: docs/MOTION_QUALITY.md.)
+TEST(PoseStage, AFootInTheAirIsNotShownOnALegStraighterThanThePoses) {
+  const MotionLibrary& lib = library();
+  for (const float turn : {0.1f, 0.314f}) {
+    const AirborneLegs r = airborne_legs_through_steered_walks(lib, turn);
+    ASSERT_GT(r.airborne_frames, 100);
+    EXPECT_LT(r.straighter_m, 1e-3f) << turn << " rad a frame";
+  }
+}
+
+TEST(PoseStage, OnACaptureOfAnotherUnitAndRootAFootInTheAirIsNotShownOnALegStraighterThanThePoses) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_walk_library("", lib));
+  const AirborneLegs r = airborne_legs_through_steered_walks(lib);
+  ASSERT_GT(r.airborne_frames, 100);
+  EXPECT_LT(r.straighter_m, 1e-3f);
+}
+
 // Over every transition of `lib` played straight through (unsteered, from a few frames before the
 // switch to a few after): the largest acceleration of a joint from the spine up about the switch,
 // as played and as shown, m/frame^2, sorted.
