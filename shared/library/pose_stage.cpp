@@ -627,7 +627,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       f.joint = joint;
       f.stepping = true;
       let_go_from(f, offset, rate);
-      reach(foot, offset, true, true);
+      reach(foot, offset);  // (as_bent here: 5 more maze pops in 400 seeds, measured)
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }

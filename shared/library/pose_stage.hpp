@@ -63,8 +63,9 @@
 //     lands it, so it comes to rest over two frames instead of stopping dead in one
 //     (touch_down). A held ball the leg cannot reach any more (the body gone on at push-off)
 //     lifts the heel, the foot turning about the ball, instead of being dragged. A foot in the
-//     air (let go of, or stepping) is never shown on a leg straighter than the pose's: its
-//     offset gives way first (near straight, the knee would swing cm for mm of reach).
+//     air (let go of, or stepping, from the frame after a step starts) is never shown on a leg
+//     straighter than the pose's: its offset gives way first (near straight, the knee would
+//     swing cm for mm of reach).
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"
