@@ -507,7 +507,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
     };
     show_offset(1.0f);
     // An offset carried on would show a joint in a box the played pose is clear of (a switch's
-    // carried hand swinging on 1 cm into the wall the new segment turns along: Bandai maze, measured):
+    // carried forearm swinging on 1 cm into the wall the new segment turns along: Bandai maze, measured):
     // show as much of it as stays clear, and go on from there (the offset is linear in its start).
     if (obstacles_ != nullptr && shown_into_obstacle(0, n - 1)) {
       const float clear = show_clear_share(show_offset, [&] { return shown_into_obstacle(0, n - 1); });

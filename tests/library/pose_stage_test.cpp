@@ -450,9 +450,10 @@ TEST(PoseStage, OnACaptureOfAnotherUnitAndRootAFootLetGoOfWhileSteeringSetsOffFr
   EXPECT_LT(step_starts[step_starts.size() / 2], 0.045f) << "median step start, m/frame^2";
 }
 
-// Every walk of `lib` played into its successor and steered at 540 deg/s over its first frames (the
-// body turns away from a planted foot, which is then let go of): over the frames a foot is in the
-// air (after its first), how far its leg is shown straighter than the pose's (m, the worst).
+// Every walk of `lib` played into its successor and steered by `turn_rad` a frame (0.314: 540
+// deg/s) over its first frames (the body turns away from a planted foot, which is then let go of):
+// over the frames a foot is in the air (after its first), how far its leg is shown straighter than
+// the pose's (m, the worst).
 struct AirborneLegs {
   float straighter_m = 0.0f;
   int airborne_frames = 0;
