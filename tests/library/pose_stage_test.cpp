@@ -203,6 +203,30 @@ void build_post(vec2 post, CollisionWorld& world) {
   ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
 }
 
+// Plays a short run with `world`'s boxes as the stage's obstacles (nullptr: none), calling `at`
+// with the stage after each frame.
+using FrameCheck = std::function<void(int, const PoseStage&)>;
+using PlayWith = std::function<void(const CollisionWorld*, const FrameCheck&)>;
+
+// Without the boxes `play` shows a joint in `world`'s post that the played pose clears; with them,
+// on no frame (the clip's own collisions aside), and on more than `min_checked` such frames.
+// `also` sees every frame of the run with the boxes.
+void expect_shown_clear_of_post(const MotionLibrary& lib, const CollisionWorld& world, const PlayWith& play,
+                                int min_checked, const FrameCheck& also = nullptr) {
+  int shown_in_post = 0, checked = 0;
+  play(nullptr, [&](int, const PoseStage& stage) {
+    shown_in_post += shown_joints_collide(lib, world, stage.shown()) && !shown_joints_collide(lib, world, stage.animated());
+  });
+  ASSERT_GT(shown_in_post, 0) << "without the boxes the stage shows a joint in the post";
+  play(&world, [&](int f, const PoseStage& stage) {
+    if (also) also(f, stage);
+    if (shown_joints_collide(lib, world, stage.animated())) return;  // the clip's own
+    ++checked;
+    EXPECT_FALSE(shown_joints_collide(lib, world, stage.shown())) << "frame " << f;
+  });
+  EXPECT_GT(checked, min_checked);
+}
+
 // A foot let go of (lifted, or stepping) is shown at an offset from the pose's that dies out. Where
 // that would show it in a box the played foot clears (traced in the obstacles: a swinging toe 2 cm
 // into a crate), only the share of the offset that stays clear is shown. A walking step steered
@@ -215,8 +239,7 @@ TEST(PoseStage, AFootLetGoOfIsNotShownInABoxThePlayedFootClears) {
   PoseStageConfig config;
   config.turn_easing = false;
   const int frames = lib.graph.segments[static_cast<size_t>(walk)].num_frames();
-  // Plays the steered step with `world`'s boxes; calls `at` with the stage after each frame.
-  const auto play = [&](const CollisionWorld* world, const std::function<void(int, const PoseStage&)>& at) {
+  const PlayWith play = [&](const CollisionWorld* world, const FrameCheck& at) {  // the steered step
     PoseStage stage(lib, config);
     stage.set_obstacles(world);
     PlaybackState s{walk, 0, Placement{}, -1};
@@ -243,17 +266,7 @@ TEST(PoseStage, AFootLetGoOfIsNotShownInABoxThePlayedFootClears) {
   ASSERT_GT(farthest, 0.04f) << "a foot let go of is shown away from its played place";
   CollisionWorld world;
   ASSERT_NO_FATAL_FAILURE(build_post(post, world));
-  int shown_in_post = 0, checked = 0;
-  play(nullptr, [&](int, const PoseStage& stage) {
-    shown_in_post += shown_joints_collide(lib, world, stage.shown()) && !shown_joints_collide(lib, world, stage.animated());
-  });
-  ASSERT_GT(shown_in_post, 0) << "without the boxes the offset shows the foot in the post";
-  play(&world, [&](int f, const PoseStage& stage) {
-    if (shown_joints_collide(lib, world, stage.animated())) return;  // the clip's own
-    ++checked;
-    EXPECT_FALSE(shown_joints_collide(lib, world, stage.shown())) << "frame " << f;
-  });
-  EXPECT_GT(checked, frames / 2);
+  EXPECT_NO_FATAL_FAILURE(expect_shown_clear_of_post(lib, world, play, frames / 2));
 }
 
 // Walking steps steered at 540 deg/s for 5 frames: the body turns so far over the planted foot
@@ -616,86 +629,85 @@ TEST(PoseStage, AFootStartingAStepIsNotPlantedOnThatFrame) {
             0.01f);
 }
 
-// A played pose that jumps (a fallback, a correction) is shown continuing from where it was,
-// the jump decaying over inertialize_s.
-TEST(PoseStage, AJumpIsInertializedNotShown) {
-  const MotionLibrary& lib = library();
-  const int idle = lib.graph.find_segment("idle");
-  ASSERT_GE(idle, 0);
+// `lib`'s idle (its standing loop) shown through a stage with only the offsets (no foot locks), with
+// `world`'s boxes (nullptr: none): frame 0 where it stands, then from frame 1 on a metre sideways
+// (a jump, as a fallback or a correction is), to frame 11. Calls `at` with the stage each frame.
+void play_jumped_idle(const MotionLibrary& lib, const CollisionWorld* world, const FrameCheck& at) {
+  int idle = -1;
+  for (int g = 0; g < lib.graph.num_segments() && idle < 0; ++g)
+    if ((lib.graph.segments[static_cast<size_t>(g)].tags & (kTagIdle | kTagCrouch | kTagFight)) == kTagIdle) idle = g;
+  ASSERT_GE(idle, 0) << "the library has an idle";
   PoseStageConfig config;
   config.foot_locking = false;  // the offsets alone
   PoseStage stage(lib, config);
+  stage.set_obstacles(world);
   PlaybackState s{idle, 0, Placement{}, -1};
-  const std::span<const vec3> first = stage.update(s, 0.0f);
-  const std::vector<vec3> before(first.begin(), first.end());
-  s.segment_start = Placement{vec2(1.0f, 0.0f), 0.0f};  // a metre sideways in one frame
-  s.frame = 1;
-  std::span<const vec3> shown = stage.update(s, 1.0f / 30.0f);
-  EXPECT_EQ(stage.discontinuities(), 1);
-  EXPECT_LT(glm::length(shown[0] - before[0]), 0.05f) << "no jump on the first frame";
-  float previous_x = shown[0].x;
-  for (int f = 2; f < 12; ++f) {
+  for (int f = 0; f < 12; ++f) {
     s.frame = f;
-    shown = stage.update(s, 1.0f / 30.0f);
-    EXPECT_GE(shown[0].x, previous_x - 1e-4f) << "moving over, never back";
-    // The offset dies out as a quintic (its rate and acceleration start and end at 0): its
-    // fastest frame moves 1.875 x 1 m / 6 frames, 0.31 m.
-    EXPECT_LT(shown[0].x - previous_x, 0.33f) << "in steps, not a jump";
-    previous_x = shown[0].x;
+    if (f == 1) s.segment_start = Placement{vec2(1.0f, 0.0f), 0.0f};
+    stage.update(s, f == 0 ? 0.0f : 1.0f / 30.0f);
+    at(f, stage);
   }
-  EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
 }
 
-// An inertialized offset (a jump here; traced as a switch's carried hand: Bandai maze, a forearm
-// 1 cm into the wall the new segment turns along) would show a joint in a box the played pose
-// clears: only the share of the offset that stays clear is shown, and the rest still dies out
-// smoothly. An idle jumped 1 m sideways, with a thin post just behind the body shown on its way.
-TEST(PoseStage, AnInertializedOffsetIsNotShownInABoxThePlayedPoseClears) {
-  const MotionLibrary& lib = library();
-  const int idle = lib.graph.find_segment("idle");
-  ASSERT_GE(idle, 0);
-  PoseStageConfig config;
-  config.foot_locking = false;  // the offsets alone
-  // Plays the jump with `world`'s boxes; calls `at` with the stage after each frame.
-  const auto play = [&](const CollisionWorld* world, const std::function<void(int, const PoseStage&)>& at) {
-    PoseStage stage(lib, config);
-    stage.set_obstacles(world);
-    PlaybackState s{idle, 0, Placement{}, -1};
-    stage.update(s, 0.0f);
-    s.segment_start = Placement{vec2(1.0f, 0.0f), 0.0f};
-    for (int f = 1; f < 12; ++f) {
-      s.frame = f;
-      stage.update(s, 1.0f / 30.0f);
-      at(f, stage);
-    }
-  };
-  vec2 post(0.0f);
-  play(nullptr, [&](int f, const PoseStage& stage) {
-    if (f != 2) return;
-    const std::span<const vec3> shown = stage.shown();
-    const size_t trailing = static_cast<size_t>(std::min_element(shown.begin(), shown.end(), [](vec3 a, vec3 b) { return a.x < b.x; }) - shown.begin());
-    post = ground(shown[trailing]) - vec2(0.05f, 0.0f);  // 5 cm behind the body, which moves on in +x
-  });
-  CollisionWorld world;
-  ASSERT_NO_FATAL_FAILURE(build_post(post, world));
-  int shown_in_post = 0;
-  play(nullptr, [&](int, const PoseStage& stage) {
-    shown_in_post += shown_joints_collide(lib, world, stage.shown()) && !shown_joints_collide(lib, world, stage.animated());
-  });
-  ASSERT_GT(shown_in_post, 0) << "without the boxes the offset shows the body in the post";
+// A played pose that jumps (a fallback, a correction) is shown continuing from where it was,
+// the jump decaying over inertialize_s.
+TEST(PoseStage, AJumpIsInertializedNotShown) {
+  vec3 before(0.0f);
   float previous_x = 0.0f;
-  int checked = 0;
-  play(&world, [&](int f, const PoseStage& stage) {
+  ASSERT_NO_FATAL_FAILURE(play_jumped_idle(library(), nullptr, [&](int f, const PoseStage& stage) {
     const std::span<const vec3> shown = stage.shown();
-    if (f > 1) {
-      EXPECT_LT(std::abs(shown[0].x - previous_x), 0.33f) << "frame " << f << ": in steps, not a jump";
+    if (f == 0) before = shown[0];
+    if (f == 1) {
+      EXPECT_EQ(stage.discontinuities(), 1);
+      EXPECT_LT(glm::length(shown[0] - before), 0.05f) << "no jump on the first frame";
+    }
+    if (f >= 2) {
+      EXPECT_GE(shown[0].x, previous_x - 1e-4f) << "moving over, never back";
+      // The offset dies out as a quintic (its rate and acceleration start and end at 0): its
+      // fastest frame moves 1.875 x 1 m / 6 frames, 0.31 m.
+      EXPECT_LT(shown[0].x - previous_x, 0.33f) << "in steps, not a jump";
+    }
+    if (f == 11) {
+      EXPECT_NEAR(shown[0].x, stage.animated()[0].x, 1e-3f) << "arrived after inertialize_s";
     }
     previous_x = shown[0].x;
-    if (shown_joints_collide(lib, world, stage.animated())) return;  // the clip's own
-    ++checked;
-    EXPECT_FALSE(shown_joints_collide(lib, world, shown)) << "frame " << f;
-  });
-  EXPECT_GT(checked, 5);
+  }));
+}
+
+// An inertialized offset (a jump here; traced as a switch's carried forearm: Bandai maze, 1 cm into
+// the wall the new segment turns along) would show a joint in a box the played pose clears: only
+// the share of the offset that stays clear is shown, and the rest still dies out smoothly. An idle
+// jumped 1 m sideways, with a thin post just behind the body shown on its way.
+void expect_an_inertialized_offset_clear_of_a_post(const MotionLibrary& lib) {
+  vec2 post(0.0f);
+  ASSERT_NO_FATAL_FAILURE(play_jumped_idle(lib, nullptr, [&](int f, const PoseStage& stage) {
+    if (f != 2) return;
+    const std::span<const vec3> shown = stage.shown();
+    const auto trailing = std::min_element(shown.begin(), shown.end(), [](vec3 a, vec3 b) { return a.x < b.x; });
+    post = ground(*trailing) - vec2(0.05f, 0.0f);  // 5 cm behind the body, which moves on in +x
+  }));
+  CollisionWorld world;
+  ASSERT_NO_FATAL_FAILURE(build_post(post, world));
+  float previous_x = 0.0f;
+  const PlayWith play = [&](const CollisionWorld* boxes, const FrameCheck& at) { play_jumped_idle(lib, boxes, at); };
+  EXPECT_NO_FATAL_FAILURE(expect_shown_clear_of_post(lib, world, play, 5, [&](int f, const PoseStage& stage) {
+    if (f > 1) {
+      EXPECT_LT(std::abs(stage.shown()[0].x - previous_x), 0.33f) << "frame " << f << ": in steps, not a jump";
+    }
+    previous_x = stage.shown()[0].x;
+  }));
+}
+
+TEST(PoseStage, AnInertializedOffsetIsNotShownInABoxThePlayedPoseClears) {
+  expect_an_inertialized_offset_clear_of_a_post(library());
+}
+
+TEST(PoseStage, OnACaptureOfAnotherUnitAndRootAnInertializedOffsetIsNotShownInABoxThePlayedPoseClears) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_walk_library("", lib));
+  expect_an_inertialized_offset_clear_of_a_post(lib);
 }
 
 // A jump from mid-stride (a foot in the air) to a stand that plants both feet, as a fallback to
