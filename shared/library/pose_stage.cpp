@@ -22,20 +22,6 @@ constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where
 constexpr float kHanging_m = 0.02f;        // a planted part this far over the ground under it is not on it
 constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to its pose's height is down
 
-// The largest share in [0, 1] of a move that show(share) shows without blocked() (bisection, 8
-// halvings: within 0.4 %); the pose is left showing that share, which is returned.
-template <typename Show, typename Blocked>
-float show_clear_share(Show&& show, Blocked&& blocked) {
-  float clear = 0.0f, stopped = 1.0f;
-  for (int i = 0; i < 8; ++i) {
-    const float mid = 0.5f * (clear + stopped);
-    show(mid);
-    (blocked() ? stopped : clear) = mid;
-  }
-  show(clear);
-  return clear;
-}
-
 // Bollo's inertialization (GDC 2018, "Inertialization: High-Performance Animation Transitions in
 // Gears of War"): an offset that starts at x0 changing at v0 (with no acceleration) and dies out
 // at T with its rate and acceleration (a quintic); at(t) and rate_at(t), t into it.
@@ -114,6 +100,23 @@ vec2 nearest_in_lens(vec2 p, vec2 c, float r) {
 }
 
 }  // namespace
+
+// Shows show(1) (all of a move: an offset, a turn lag); where that puts a shown joint in [first,
+// last] in a box the played pose is clear of (set_obstacles), the largest share that does not
+// (bisection, 8 halvings: within 0.4 %). The pose is left showing that share, which is returned.
+template <typename Show>
+float PoseStage::show_clear(Show&& show, size_t first, size_t last) {
+  show(1.0f);
+  if (obstacles_ == nullptr || !shown_into_obstacle(first, last)) return 1.0f;
+  float clear = 0.0f, stopped = 1.0f;
+  for (int i = 0; i < 8; ++i) {
+    const float mid = 0.5f * (clear + stopped);
+    show(mid);
+    (shown_into_obstacle(first, last) ? stopped : clear) = mid;
+  }
+  show(clear);
+  return clear;
+}
 
 PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
     : library_(library), config_(config) {
@@ -210,12 +213,9 @@ void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
   // before, playback_steer_pivot; easing about that point measured worse: maze 4.1 pops a minute).
   const vec2 pivot = playback_root(library_, state).pos_m;
   std::copy(shown_.begin(), shown_.end(), unturned_.begin());
-  turn_about(pivot, 1.0f);
-  if (obstacles_ == nullptr || !shown_into_obstacle(0, shown_.size() - 1)) return;
-  // The lag would show a joint (a hand swinging behind the turn) in a box the played pose is
-  // clear of: show as much of it as stays clear, and go on from there.
-  const float clear = show_clear_share([&](float share) { turn_about(pivot, share); },
-                                       [&] { return shown_into_obstacle(0, shown_.size() - 1); });
+  // Where the lag would show a joint (a hand swinging behind the turn) in a box the played pose
+  // is clear of, as much of it as stays clear is shown, and it goes on from there.
+  const float clear = show_clear([&](float share) { turn_about(pivot, share); }, 0, shown_.size() - 1);
   for (TurnLag& lag : turn_lag_) lag.offset_rad *= clear, lag.speed_rad_s *= clear;
 }
 
@@ -502,17 +502,16 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
   const float T = config_.inertialize_s;
   if (offset_left_s_ > 0.0f) {
     for (size_t j = 0; j < n; ++j) offset_now_[j] = Inertialized(offset_[j], offset_rate_[j], T).at(T - offset_left_s_);
-    const auto show_offset = [&](float share) {
-      for (size_t j = 0; j < n; ++j) shown_[j] = animated_[j] + share * offset_now_[j];
-    };
-    show_offset(1.0f);
-    // An offset carried on would show a joint in a box the played pose is clear of (a switch's
-    // carried forearm swinging on 1 cm into the wall the new segment turns along: Bandai maze, measured):
-    // show as much of it as stays clear, and go on from there (the offset is linear in its start).
-    if (obstacles_ != nullptr && shown_into_obstacle(0, n - 1)) {
-      const float clear = show_clear_share(show_offset, [&] { return shown_into_obstacle(0, n - 1); });
-      for (size_t j = 0; j < n; ++j) offset_[j] *= clear, offset_rate_[j] *= clear;
-    }
+    // Where an offset carried on would show a joint in a box the played pose is clear of (a
+    // switch's carried forearm swinging on 1 cm into the wall the new segment turns along: Bandai
+    // maze, measured), as much of it as stays clear is shown, and it goes on from there (the
+    // offset is linear in its start).
+    const float clear = show_clear(
+        [&](float share) {
+          for (size_t j = 0; j < n; ++j) shown_[j] = animated_[j] + share * offset_now_[j];
+        },
+        0, n - 1);
+    for (size_t j = 0; j < n; ++j) offset_[j] *= clear, offset_rate_[j] *= clear;
   }
   // Each joint's offset is its own: the legs get their bones' lengths back by IK to where the
   // offset ankles are (measured: without it a fallback on the Bandai capture showed a shin 7 cm
@@ -644,19 +643,17 @@ void PoseStage::lock_foot(int foot, float dt_s) {
 // A foot let go of is shown at an offset from the pose's, on a leg no straighter than the pose's
 // (reach's as_bent): where that would show the leg in a box the played one is clear of (a
 // swinging toe 2 cm into a crate beside the path, measured), only the share of the offset that
-// stays clear is shown (bisection, as the eased turn does).
+// stays clear is shown (show_clear, as for the eased turn).
 void PoseStage::reach_clear(int foot, vec3 offset) {
   const size_t knee = static_cast<size_t>(foot == 0 ? kCanonLeftLeg : kCanonRightLeg), toe_end = knee + 3;
   std::array<vec3, 4> leg;
   std::copy(shown_.begin() + static_cast<long>(knee), shown_.begin() + static_cast<long>(toe_end) + 1, leg.begin());
-  reach(foot, offset, true, true);
-  if (obstacles_ == nullptr || !shown_into_obstacle(knee, toe_end)) return;
-  show_clear_share(
+  show_clear(
       [&](float share) {
         std::copy(leg.begin(), leg.end(), shown_.begin() + static_cast<long>(knee));
         reach(foot, share * offset, true, true);
       },
-      [&] { return shown_into_obstacle(knee, toe_end); });
+      knee, toe_end);
 }
 
 // A foot the clip plants while it is still shown moving fast (steering sweeps a landing foot

@@ -158,6 +158,8 @@ class PoseStage {
   void turn_about(vec2 pivot, float share);
   /// Whether a shown joint in [first, last] is in a box (set_obstacles) its played one is clear of.
   bool shown_into_obstacle(size_t first, size_t last) const;
+  template <typename Show>
+  float show_clear(Show&& show, size_t first, size_t last);
   void adapt_to_ground(const PlaybackState& state, float frame_alpha, float dt_s);
   bool landing_ground(const PlaybackState& state, float frame_alpha, int foot, float& height, float& in_s, vec2& at);
   bool lowest_ground_near(vec2 p, float& height) const;
