@@ -38,8 +38,8 @@ TEST(PopBudget, TheLibrarysPopThresholdIsItsOwnClipsNinetyNinePointNinthPercenti
   EXPECT_LE(over, inner / 500);
 }
 
-// The limit binds where a clip has little room (a side step's swing, a fast run) and not where it
-// has plenty (standing, the start of a walk); it never drops under the floor and changes by at
+// The limit binds where a clip has little room (a fast run) and not where it has plenty
+// (standing, the start of a walk, a side step); it never drops under the floor and changes by at
 // most the ramp from one frame to the next.
 TEST(PopBudget, SteeringsLimitIsFlooredRampedAndTightestWhereTheClipHasLeastRoom) {
   const MotionLibrary& lib = library();
@@ -61,10 +61,16 @@ TEST(PopBudget, SteeringsLimitIsFlooredRampedAndTightestWhereTheClipHasLeastRoom
     for (int f = s.first_frame; f < s.end_frame; ++f) least = std::min(least, lib.steer_limit_at(s.clip, f));
     return least;
   };
-  EXPECT_LT(tightest("side_step_left"), full / 3.0f) << "a side step's swing has little room";
   EXPECT_LT(tightest("run_l"), full / 2.0f) << "a run is fast";
   EXPECT_GE(tightest("idle"), full) << "standing has room for any turn";
   EXPECT_GT(tightest("walk_l"), tightest("run_l"));
+  // A side step is steered at a third of the rate (LookaheadAvatar::kSidewaysSteerShare); its
+  // frames leave room for that throughout. Its swings once took 0.1 s each (own acceleration 112
+  // of the 121 threshold, no room: the floor turned them anyway, and 9 of the built-in library's
+  // 14 pops in 800 closed-loop runs were side steps' knees and toes; docs/MOTION_QUALITY.md,
+  // "Side steps with room to steer").
+  for (const char* side_step : {"side_step_left", "side_step_right"})
+    EXPECT_GE(tightest(side_step), full / 3.0f) << side_step;
 }
 
 }  // namespace
