@@ -159,17 +159,16 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
     u.style_blend_end_s = u.duration_s;
     c.add(u);
   }
-  // Side-steps from idle: the leading foot steps out, the other closes. Each swing takes 0.12-0.13
-  // s: in 0.1 s the knees and toes reached 112 mm/frame^2 of the library's 121 pop threshold,
-  // leaving root steering no room, and 9 of the 14 pops left in 800 closed-loop runs were side
-  // steps (docs/MOTION_QUALITY.md, "Side steps with room to steer"). The clip stays 13 frames:
-  // its root sets off as before, so the steering sees it go sideways from its first frames.
+  // Side-steps from idle: the leading foot steps out, the other closes. Each swing takes 0.14-0.16
+  // s: in 0.1 s (a 13-frame clip) the knees and toes reached 112 mm/frame^2 of the library's 121
+  // pop threshold, leaving root steering no room, and 9 of the 14 pops left in 800 closed-loop
+  // runs were side steps (docs/MOTION_QUALITY.md, "Side steps with room to steer").
   for (int side = 0; side < 2; ++side) {
     const float m = side_sign(side);
     LocomotionSpec s = transition_spec(side == kLeft ? "side_step_left" : "side_step_right", loco,
-                                       idle, idle, frames_s(13), {vec2(m * 0.27f, 0.0f), 0.0f}, g);
-    set_step(s, side, 0.0f, 0.07f, 0.19f);
-    set_step(s, 1 - side, 0.13f, 0.17f, 0.30f);
+                                       idle, idle, frames_s(15), {vec2(m * 0.27f, 0.0f), 0.0f}, g);
+    set_step(s, side, 0.0f, 0.06f, 0.22f);
+    set_step(s, 1 - side, 0.17f, 0.21f, 0.35f);
     c.add(s);
   }
   // A half step forward from idle (the leading foot steps, the other closes): a fighter's footwork

@@ -176,8 +176,19 @@ bool LookaheadAvatar::steer(const ChildVeto* veto) {
 }
 
 vec2 LookaheadAvatar::way_ahead() const {
-  const int ahead = std::min(playback_.frame + kSteerAheadFrames, library_.graph.segments[playback_.segment].num_frames());
-  return motion_library_root_at(library_, playback_.segment, ahead, playback_.segment_start).pos_m - root().pos_m;
+  const int frames = library_.graph.segments[playback_.segment].num_frames();
+  const auto way_to = [&](int frame) {
+    return motion_library_root_at(library_, playback_.segment, frame, playback_.segment_start).pos_m - root().pos_m;
+  };
+  const vec2 near = way_to(std::min(playback_.frame + kSteerAheadFrames, frames));
+  if (glm::dot(near, near) >= kSteerAheadMin_m * kSteerAheadMin_m || playback_.frame >= kSteerAheadFrames) return near;
+  // A move that sets off slowly (a side step shifting its weight before the root goes) has barely
+  // begun over its first few frames: its way is where the segment ends. Taken as standing, those
+  // frames were turned by the heading rule at the full rate, the body towards the key and the
+  // step's way away from it. (Not at a stop's end, which slows down: steering its last
+  // centimetres onto the key cost the captured fighters' strikes their hits, test
+  // Bots.FightersOnCapturedLocomotionAndStrikesStrikeAndHit.)
+  return way_to(frames);
 }
 
 // The playing segment's heading with its gait sway taken out: from its start's to its end's,

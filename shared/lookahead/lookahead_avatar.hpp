@@ -75,7 +75,9 @@ class LookaheadAvatar {
   const PlaybackState& playback() const { return playback_; }
   Placement root() const { return playback_root(library_, playback_); }
   /// Where the playing segment takes the root over the next kSteerAheadFrames (to its end at
-  /// most), from where it stands: the way steering holds onto the key.
+  /// most), from where it stands: the way steering holds onto the key. Under kSteerAheadMin_m on
+  /// the segment's first kSteerAheadFrames, where it takes the root by its end (a move that sets
+  /// off slowly).
   vec2 way_ahead() const;
   const MotionTree& tree() const { return tree_; }
   MotionTree& tree() { return tree_; }
