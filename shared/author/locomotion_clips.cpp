@@ -186,8 +186,10 @@ std::vector<LocomotionSpec> default_locomotion_specs(const FootGeometry& g) {
   add_spot_turns(c, "idle", 0, idle);
   add_spot_turns(c, "crouch_idle", kTagCrouch, crouch_idle);
   {
+    // The first foot lifts at 0.06 s, not 0.08: its swing's knee, shown through the pose stage,
+    // sat on the pop threshold (docs/MOTION_QUALITY.md, "Side steps with room to steer").
     const std::array<SpotStep, 4> steps = {
-        SpotStep{kLeft, 0.0f, 0.08f, 0.21f, 0.5f}, SpotStep{kRight, 0.15f, 0.21f, 0.34f, 0.5f},
+        SpotStep{kLeft, 0.0f, 0.06f, 0.21f, 0.5f}, SpotStep{kRight, 0.15f, 0.21f, 0.34f, 0.5f},
         SpotStep{kLeft, 0.28f, 0.34f, 0.46f, 1.0f}, SpotStep{kRight, 0.41f, 0.46f, 0.59f, 1.0f}};
     c.add(spot_turn_spec("idle_turn_180", kTagTurn, idle, frames_s(21), kPi, steps, g));
   }
