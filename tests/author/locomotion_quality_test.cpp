@@ -117,7 +117,7 @@ TEST(LocomotionQuality, SpeedsAndStepLengths) {
                 {"crouch_walk_l", 0.6f, 0.8f},   {"crouch_walk_r", 0.6f, 0.8f},
                 {"idle", 0.0f, 0.01f},           {"crouch_idle", 0.0f, 0.01f},
                 {"fight_stance", 0.0f, 0.01f},
-                // 0.27 m in 0.43 s: a quick shuffle sideways, one boundary-to-boundary move (it
+                // 0.27 m in 0.5 s: a quick shuffle sideways, one boundary-to-boundary move (it
                 // took 1.1 s, then 0.6 s; shortened so a new command waits less, docs/LAB.md).
                 {"side_step_left", 0.5f, 0.9f},  {"side_step_right", 0.5f, 0.9f}};
   for (const auto& s : speeds) {
