@@ -118,7 +118,8 @@ TEST(LocomotionQuality, SpeedsAndStepLengths) {
                 {"idle", 0.0f, 0.01f},           {"crouch_idle", 0.0f, 0.01f},
                 {"fight_stance", 0.0f, 0.01f},
                 // 0.27 m in 0.5 s: a quick shuffle sideways, one boundary-to-boundary move (it
-                // took 1.1 s, then 0.6 s; shortened so a new command waits less, docs/LAB.md).
+                // took 1.1 s, then 0.6 s, shortened so a new command waits less, docs/LAB.md; then
+                // 0.43 s, whose 0.1 s swings left root steering no room, docs/MOTION_QUALITY.md).
                 {"side_step_left", 0.5f, 0.9f},  {"side_step_right", 0.5f, 0.9f}};
   for (const auto& s : speeds) {
     const Motion m = motion_of(find_clip(s.name)->clip);
