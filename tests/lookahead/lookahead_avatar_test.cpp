@@ -261,8 +261,8 @@ TEST(LookaheadAvatar, OnAForeignCaptureSteeringAnswersOnTheFrameAndKeepsThePathO
 // A segment going sideways (a side step: its way 45-135 deg off its facing) is steered at a third
 // of the rate: aiming its way at the key turns its body as far, and side steps spun round at
 // 540 deg/s were most of the built-in library's pops (docs/MOTION_QUALITY.md). A forward walk
-// still turns at the full rate. Each locomotion segment with a way over its first frames is
-// spawned on open ground with the key 90 deg off that way; its first steered frame's turn is
+// still turns at the full rate. Each locomotion segment with a way (LookaheadAvatar::way_ahead)
+// is spawned on open ground with the key 90 deg off that way; its first steered frame's turn is
 // compared with 18 deg (6 deg sideways). Returns how many sideways segments were seen.
 int expect_sideways_segments_steered_slower(const MotionLibrary& lib) {
   const CollisionWorld& world = open_field();
@@ -329,6 +329,45 @@ TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
   MotionLibrary lib;
   ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
   EXPECT_GE(expect_sideways_segments_steered_slower(lib), 1);
+}
+
+// A sideways move that sets off slowly (the built-in side step shifts its weight first: 4 cm in
+// its first 4 frames) is still a sideways move on those frames (LookaheadAvatar::way_ahead takes
+// it to where the segment ends). The same on a capture the team did not make: the Bandai crab
+// walk above taken 4 times slower (0.3 m/s; the walk as captured beside it), so that its pieces
+// move under 5 cm in their first 4 frames; they are found going sideways and steered at the third
+// of the rate.
+TEST(LookaheadAvatar, OnASlowForeignSidewaysWalkTheFirstFramesAreSteeredAsSideways) {
+  FORESIGHT_REQUIRE_MOCAP();
+  BvhDocument walk;
+  std::string error;
+  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", walk, error)) << error;
+  BvhDocument crab = walk;
+  const int hips = test::joint_named(crab, "Hips");
+  ASSERT_GE(hips, 0);
+  test::turn_body_on_its_path(crab, hips, 90.0);
+  const double frame_time_s = crab.frame_time_s;
+  test::upsample(crab, 4);
+  crab.frame_time_s = frame_time_s;  // four times the frames at the same rate: 4 x slower
+  const auto dir = test::scratch_dir();
+  for (auto [take, name] : {std::pair{&walk, "walk.bvh"}, std::pair{&crab, "slow_crab_walk.bvh"}}) {
+    test::make_foreign(*take);
+    ASSERT_TRUE(bvh_save(dir / name, *take, error)) << error;
+  }
+  MotionSource source;
+  source.motions_dir = dir;
+  MotionLibrary lib;
+  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  int slow_starts = 0;
+  for (int s = 0; s < lib.graph.num_segments(); ++s) {
+    const Segment& seg = lib.graph.segments[static_cast<size_t>(s)];
+    if (!(seg.tags & kTagLocomotion) || seg.num_frames() <= LookaheadAvatar::kSteerAheadFrames) continue;
+    const vec2 first_frames = motion_library_root_at(lib, s, LookaheadAvatar::kSteerAheadFrames, Placement{}).pos_m -
+                              motion_library_root_at(lib, s, 0, Placement{}).pos_m;
+    slow_starts += glm::length(first_frames) < LookaheadAvatar::kSteerAheadMin_m;
+  }
+  EXPECT_GT(slow_starts, 3) << "the slowed take must set off slowly, or the test shows nothing";
+  EXPECT_GE(expect_sideways_segments_steered_slower(lib), 3);
 }
 
 // Steering turns the playing motion about the root, which adds about 2 x rate x speed to every
