@@ -106,6 +106,11 @@ class LookaheadAvatar {
   Placement turned_start(float turn) const;
   float frame_turn(float rad_per_s) const;
   bool is_standing_loop(int segment) const { return standing_loop_[static_cast<size_t>(segment)] != 0; }
+  /// A turn on the spot: a turning segment that does not travel (the library's idle_turn_*).
+  bool is_spot_turn(int segment) const {
+    const uint32_t tags = library_.graph.segments[static_cast<size_t>(segment)].tags;
+    return (tags & kTagTurn) && !(tags & kTagLocomotion);
+  }
   bool has_way_on(int segment, const Placement& start, int depth) const;
   bool may_end_early() const;
   int select_child(const ChildVeto* veto);
