@@ -278,28 +278,17 @@ class Deriver {
     const size_t starts = std::min<size_t>(candidates.size(), kMaxStarts);
     for (size_t i = 0; i < starts; ++i)
       add_start(candidates[starts > 1 ? i * (candidates.size() - 1) / (starts - 1) : 0].segment);
-    // A clip left without a stop or a start (a run, a backward walk, a standing take, a walk the
-    // spread by turn rate passed over) would drop out of the graph: it gets one whatever its
-    // speed, out of its last segment, and into its first segment at walking speed with half a
-    // start's frames of the clip before it: the start then plays the clip's own run-up, its limbs
-    // moving as the clip's are when it joins. (Into a segment at the clip's frame 0 a start holds
-    // the clip's first pose while the root eases up, and the limbs set off at the join: the Bandai
-    // dash's toe, 184 mm/frame^2. For the dash itself, too fast for a walking start, that stays: led
-    // into its run-up the avatar dashed far more, and the dash's own knees doubled the pops,
-    // docs/MOTION_QUALITY.md.) A clip with no such segment gets its start into its first.
+    // A clip left without a stop or a start (a run, a backward walk, a standing take) would drop
+    // out of the graph: it gets one whatever its speed, into its first segment, out of its last.
     for (int c = 0; c < captured_; ++c) {
-      int first = -1, last = -1, run_up = -1;
+      int first = -1, last = -1;
       for (int s = 0; s < captured_segments_; ++s)
         if (graph_.segments[static_cast<size_t>(s)].clip == c) {
-          const Segment& seg = graph_.segments[static_cast<size_t>(s)];
           if (first < 0) first = s;
-          if (run_up < 0 && seg.first_frame >= ease_frames_ / 2 &&
-              glm::length(velocity(seg.clip, seg.first_frame).ground) <= kMaxWalkSpeed)
-            run_up = s;
           last = s;
         }
       if (first < 0) continue;
-      if (starts_of_[static_cast<size_t>(c)] == 0) add_start(run_up >= 0 ? run_up : first);
+      if (starts_of_[static_cast<size_t>(c)] == 0) add_start(first);
       if (stops_of_[static_cast<size_t>(c)] == 0) add_stop(last);
     }
   }

@@ -85,60 +85,6 @@ TEST(FolderLibrary, RealLocomotionCaptureGivesAStronglyConnectedGraph) {
   test::expect_continuous_edges(lib, 3.0f, 0.03f);
 }
 
-// A derived start leads into a piece of a captured clip that has a quarter second of the clip
-// before it where the clip has one at walking speed, and plays that run-up: at the join its limbs
-// move (relative to the pelvis) as the clip's do. Led into the clip's frame 0, a start held the
-// clip's first pose while the root eased up and the limbs set off at the join at full speed.
-TEST(FolderLibrary, OnRealCaptureADerivedStartJoinsWithTheLimbsMovingAsTheClipsDo) {
-  FORESIGHT_REQUIRE_MOCAP();
-  MotionLibrary lib;
-  LibraryImportReport imported;
-  std::string error;
-  MotionSource source;
-  source.motions_dir = test::mocap_dir() / "locomotion";
-  source.graph.candidate_stride = 3;
-  ASSERT_TRUE(motion_library_from_folder(source, lib, &imported, error)) << error;
-  // How far the joints move relative to the pelvis from frame f to f + 1 (mean over the joints).
-  std::vector<vec3> pos;
-  const auto limbs_moving = [&](const Clip& clip, int f) {
-    fk_clip_positions(lib.skeleton, clip, pos);
-    const auto n = static_cast<size_t>(clip.num_joints);
-    const auto at = [&](int frame, size_t j) { return pos[static_cast<size_t>(frame) * n + j] - pos[static_cast<size_t>(frame) * n]; };
-    float sum = 0.0f;
-    for (size_t j = 1; j < n; ++j) sum += glm::length(at(f + 1, j) - at(f, j));
-    return sum / static_cast<float>(n - 1);
-  };
-  int checked = 0;
-  for (int s = 0; s < lib.graph.num_segments(); ++s) {
-    const Segment& start = lib.graph.segments[static_cast<size_t>(s)];
-    const Clip& start_clip = lib.clips[static_cast<size_t>(start.clip)];
-    if (!start_clip.name.starts_with("derived_start_")) continue;
-    for (const Transition& t : lib.graph.successors(s)) {
-      const Segment& into = lib.graph.segments[static_cast<size_t>(t.to)];
-      const Clip& clip = lib.clips[static_cast<size_t>(into.clip)];
-      if (clip.name.starts_with("derived_") || into.first_frame + 2 >= clip.num_frames) continue;
-      // Does the clip have a walking-speed piece with a quarter second before it?
-      const int quarter = static_cast<int>(std::lround(0.25f * clip.fps));
-      fk_clip_positions(lib.skeleton, clip, pos);
-      const auto n = static_cast<size_t>(clip.num_joints);
-      const auto speed = [&](int f) {
-        return glm::length(ground(pos[static_cast<size_t>(f + 1) * n] - pos[static_cast<size_t>(f) * n])) * clip.fps;
-      };
-      bool has_run_up = false;
-      for (const Segment& other : lib.graph.segments)
-        has_run_up |= other.clip == into.clip && other.first_frame >= quarter && other.first_frame + 1 < clip.num_frames &&
-                      speed(other.first_frame) <= 2.2f;
-      if (!has_run_up) continue;  // too short or too fast: its start holds the first pose (the Bandai dash)
-      ++checked;
-      const float own = limbs_moving(clip, into.first_frame);
-      const float shown = limbs_moving(start_clip, start_clip.num_frames - 2);
-      EXPECT_GT(shown, 0.5f * own) << start_clip.name << " into " << into.name << ": limbs move " << 100.0f * shown
-                                   << " cm a frame at the join, the clip's " << 100.0f * own;
-    }
-  }
-  EXPECT_GE(checked, 10);
-}
-
 MotionSource folder(const std::filesystem::path& dir) {
   MotionSource source;
   source.motions_dir = dir;
