@@ -626,7 +626,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
       f.joint = joint;
       f.stepping = true;
       let_go_from(f, offset, rate);
-      reach(foot, offset);  // (as_bent here: 5 more maze pops in 400 seeds, measured)
+      reach(foot, offset);  // (kFootNoStraighter here: 5 more maze pops in 400 seeds, measured)
       contact_ &= static_cast<uint8_t>(~(foot_ball_bit(foot) | foot_heel_bit(foot)));
       return;
     }
@@ -641,7 +641,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
 }
 
 // A foot let go of is shown at an offset from the pose's, on a leg no straighter than the pose's
-// (reach's as_bent): where that would show the leg in a box the played one is clear of (a
+// (Reach::kFootNoStraighter): where that would show the leg in a box the played one is clear of (a
 // swinging toe 2 cm into a crate beside the path, measured), only the share of the offset that
 // stays clear is shown (show_clear, as for the eased turn).
 void PoseStage::reach_clear(int foot, vec3 offset) {
@@ -651,7 +651,7 @@ void PoseStage::reach_clear(int foot, vec3 offset) {
   show_clear(
       [&](float share) {
         std::copy(leg.begin(), leg.end(), shown_.begin() + static_cast<long>(knee));
-        reach(foot, share * offset, true, true);
+        reach(foot, share * offset, Reach::kFootNoStraighter);
       },
       knee, toe_end);
 }
@@ -720,16 +720,16 @@ void PoseStage::push_off(int foot, vec3 ball_at) {
   side -= u * glm::dot(side, u);
   if (glm::dot(side, side) < 1e-8f) side = vec3(0.0f, 1.0f, 0.0f) - u * u.y;
   const vec3 toe_from_ball = shown_[ball + 1] - shown_[ball];
-  reach(foot, centre + glm::normalize(side) * radius - shown_[ankle], false);
+  reach(foot, centre + glm::normalize(side) * radius - shown_[ankle], Reach::kAnkleOnly);
   shown_[ball] = ball_at;
   shown_[ball + 1] = ball_at + toe_from_ball;
 }
 
-// Moves the foot by `offset` (the ankle, and everything below it unless !carry_foot) and bends the
-// leg to reach it: the knee stays in the plane of hip, new ankle and the animated knee, at the
-// bone lengths. With `as_bent`, the leg is not shown straighter than the animation's: a foot in
-// the air is not held to its offset at the cost of the knee.
-void PoseStage::reach(int foot, vec3 offset, bool carry_foot, bool as_bent) {
+// Moves the foot by `offset` (the ankle, and the ball and toe with it but for Reach::kAnkleOnly)
+// and bends the leg to reach it: the knee stays in the plane of hip, new ankle and the animated
+// knee, at the bone lengths. With Reach::kFootNoStraighter the leg is not shown straighter than
+// the animation's: a foot in the air is not held to its offset at the cost of the knee.
+void PoseStage::reach(int foot, vec3 offset, Reach how) {
   const size_t hip = static_cast<size_t>(foot == 0 ? kCanonLeftUpLeg : kCanonRightUpLeg);
   const size_t knee = hip + 1, ankle = hip + 2;
   const vec3 h = shown_[hip], k = shown_[knee], a = shown_[ankle];
@@ -749,7 +749,7 @@ void PoseStage::reach(int foot, vec3 offset, bool carry_foot, bool as_bent) {
   // maze's walk turns and on the doorways, measured: docs/MOTION_QUALITY.md).
   const float shortest = std::abs(upper - lower) + 1e-3f;
   float longest = 0.995f * (upper + lower);
-  if (as_bent) longest = std::clamp(glm::length(animated_[ankle] - animated_[hip]), shortest, longest);
+  if (how == Reach::kFootNoStraighter) longest = std::clamp(glm::length(animated_[ankle] - animated_[hip]), shortest, longest);
   if (d < 1e-4f) return;
   const vec3 dir = to / d;
   d = std::clamp(d, shortest, longest);
@@ -767,7 +767,7 @@ void PoseStage::reach(int foot, vec3 offset, bool carry_foot, bool as_bent) {
   shown_[knee] = h + dir * along + bend * out;
   shown_[ankle] = target;
   // The foot below the ankle (ball, toe end) moves with it.
-  if (carry_foot)
+  if (how != Reach::kAnkleOnly)
     for (size_t j = ankle + 1; j <= ankle + 2 && j < shown_.size(); ++j) shown_[j] += moved;
 }
 

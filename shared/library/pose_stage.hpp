@@ -168,7 +168,12 @@ class PoseStage {
   void touch_down(int foot, int joint, vec3& at, float dt_s) const;
   vec3 let_go_offset(const FootLock& lock, float left_s) const;
   void let_go_from(FootLock& lock, vec3 offset, vec2 rate) const;
-  void reach(int foot, vec3 offset, bool carry_foot = true, bool as_bent = false);
+  /// How reach() moves a foot: the ball and toe with the ankle (kFoot); the ankle alone, the
+  /// caller placing the rest (kAnkleOnly: push_off); with the foot, on a leg no straighter than
+  /// the animation's (kFootNoStraighter: a foot in the air is not held to its offset at the
+  /// cost of the knee).
+  enum class Reach { kFoot, kAnkleOnly, kFootNoStraighter };
+  void reach(int foot, vec3 offset, Reach how = Reach::kFoot);
   void reach_clear(int foot, vec3 offset);
   void push_off(int foot, vec3 ball_at);
 
