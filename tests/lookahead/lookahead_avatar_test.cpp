@@ -309,10 +309,10 @@ TEST(LookaheadAvatar, ASideStepIsSteeredSlowerThanAWalk) {
   EXPECT_GE(expect_sideways_segments_steered_slower(default_library()), 2) << "side_step_left, side_step_right";
 }
 
-// The same on capture the team did not make: the Bandai walk in inches under a dummy root, its
-// body turned 90 deg on its path (a crab walk: it goes sideways), beside the walk as captured.
-TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
-  FORESIGHT_REQUIRE_MOCAP();
+// The Bandai walk in inches under a dummy root (test::make_foreign), its body turned 90 deg on
+// its path (a crab walk: it goes sideways), played `slower` times slower (upsampled at the same
+// frame rate), beside the walk as captured: a library of both.
+void foreign_crab_walk_library(int slower, MotionLibrary& lib) {
   BvhDocument walk;
   std::string error;
   ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", walk, error)) << error;
@@ -320,6 +320,11 @@ TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
   const int hips = test::joint_named(crab, "Hips");
   ASSERT_GE(hips, 0);
   test::turn_body_on_its_path(crab, hips, 90.0);
+  if (slower > 1) {
+    const double frame_time_s = crab.frame_time_s;
+    test::upsample(crab, slower);
+    crab.frame_time_s = frame_time_s;  // more frames at the same rate: slower
+  }
   const auto dir = test::scratch_dir();
   for (auto [take, name] : {std::pair{&walk, "walk.bvh"}, std::pair{&crab, "crab_walk.bvh"}}) {
     test::make_foreign(*take);
@@ -327,8 +332,14 @@ TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
   }
   MotionSource source;
   source.motions_dir = dir;
-  MotionLibrary lib;
   ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+}
+
+// The same on capture the team did not make: the Bandai crab walk beside the walk as captured.
+TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(foreign_crab_walk_library(1, lib));
   EXPECT_GE(expect_sideways_segments_steered_slower(lib), 1);
 }
 
@@ -340,25 +351,8 @@ TEST(LookaheadAvatar, OnAForeignCaptureASidewaysWalkIsSteeredSlowerThanAWalk) {
 // of the rate.
 TEST(LookaheadAvatar, OnASlowForeignSidewaysWalkTheFirstFramesAreSteeredAsSideways) {
   FORESIGHT_REQUIRE_MOCAP();
-  BvhDocument walk;
-  std::string error;
-  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion" / "bandai_dataset-1_walk_normal_001.bvh", walk, error)) << error;
-  BvhDocument crab = walk;
-  const int hips = test::joint_named(crab, "Hips");
-  ASSERT_GE(hips, 0);
-  test::turn_body_on_its_path(crab, hips, 90.0);
-  const double frame_time_s = crab.frame_time_s;
-  test::upsample(crab, 4);
-  crab.frame_time_s = frame_time_s;  // four times the frames at the same rate: 4 x slower
-  const auto dir = test::scratch_dir();
-  for (auto [take, name] : {std::pair{&walk, "walk.bvh"}, std::pair{&crab, "slow_crab_walk.bvh"}}) {
-    test::make_foreign(*take);
-    ASSERT_TRUE(bvh_save(dir / name, *take, error)) << error;
-  }
-  MotionSource source;
-  source.motions_dir = dir;
   MotionLibrary lib;
-  ASSERT_TRUE(motion_library_from_folder(source, lib, nullptr, error)) << error;
+  ASSERT_NO_FATAL_FAILURE(foreign_crab_walk_library(4, lib));
   int slow_starts = 0;
   for (int s = 0; s < lib.graph.num_segments(); ++s) {
     const Segment& seg = lib.graph.segments[static_cast<size_t>(s)];
