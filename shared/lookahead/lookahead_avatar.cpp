@@ -1,5 +1,6 @@
 #include "lookahead/lookahead_avatar.hpp"
 
+#include "anim/fk.hpp"
 #include "lookahead/scene_path.hpp"
 
 #include <algorithm>
@@ -292,11 +293,24 @@ bool LookaheadAvatar::may_end_early() const {
   const Segment& seg = library_.graph.segments[playback_.segment];
   const Clip& clip = library_.clips[seg.clip];
   const int last = clip.num_frames - 1;
+  const int end_frame = std::min(seg.end_frame, last), here_frame = std::min(seg.first_frame + playback_.frame, last);
   // From the frame shown last (this one is not, if the segment ends here).
-  const float rise = clip.frame_pos(std::min(seg.end_frame, last))[0].y -
-                     clip.frame_pos(std::min(seg.first_frame + playback_.frame - 1, last))[0].y;
-  return glm::length(end.pos_m - now.pos_m) < kEarlyEndMove_m && std::abs(rise) < kEarlyEndRise_m &&
-         std::abs(wrap_angle(end.heading_rad - now.heading_rad)) < kEarlyEndTurn_rad;
+  const float rise = clip.frame_pos(end_frame)[0].y - clip.frame_pos(std::min(seg.first_frame + playback_.frame - 1, last))[0].y;
+  if (!(glm::length(end.pos_m - now.pos_m) < kEarlyEndMove_m && std::abs(rise) < kEarlyEndRise_m &&
+        std::abs(wrap_angle(end.heading_rad - now.heading_rad)) < kEarlyEndTurn_rad))
+    return false;
+  // Nor may a limb skip more than that: the end's pose is shown in place of this frame's, so what
+  // a joint moves between the two is added to its step in one frame and taken off on the next (a
+  // slow walk's last frame moves the root under 2 cm and its swinging toe 5-18 cm: a pop).
+  thread_local std::vector<vec3> here_pos, end_pos;  // the thread's scratch (capacity kept)
+  thread_local std::vector<quat> rot;
+  const size_t n = static_cast<size_t>(library_.num_joints());
+  here_pos.resize(n), end_pos.resize(n), rot.resize(n);
+  fk_pose(library_.skeleton, clip.frame_pos(here_frame), clip.frame_rot(here_frame), here_pos, rot);
+  fk_pose(library_.skeleton, clip.frame_pos(end_frame), clip.frame_rot(end_frame), end_pos, rot);
+  for (size_t j = 0; j < n; ++j)
+    if (glm::length(end_pos[j] - here_pos[j]) >= kEarlyEndMove_m) return false;
+  return true;
 }
 
 // A child is a trap when it moves the avatar somewhere from which, as far as the tree has looked
