@@ -160,14 +160,23 @@ bool arm_joints(const Posed& p, const std::vector<int>& path, std::array<int, 5>
   return true;
 }
 
-// Sides: the body faces where the toes point (or where it travels); left = up x forward. Names
-// decide only when the geometry cannot.
+// Sides: the body faces where the knees bend (or, legs straight, where the toes point; or where
+// it travels); left = up x forward. Names decide only when the geometry cannot. Toes alone read
+// a sprint backwards: a Bandai dash's feet, kicked up behind, point back more than ahead, and its
+// sides came out swapped (its facing backwards, 4.5 m/s "back").
 void assign_sides(const Posed& p, Limbs legs, Limbs arms, HumanoidMap& out) {
-  vec3 forward(0.0f);
+  vec3 knees(0.0f), toes(0.0f);
   for (const auto& leg : legs)
-    if (leg[3] >= 0)
-      for (int f = 0; f < p.frames; ++f) forward += p.at(f, leg[3]) - p.at(f, leg[2]);
-  forward.y = 0.0f;
+    for (int f = 0; f < p.frames; ++f) {
+      const vec3 hip = p.at(f, leg[0]), knee = p.at(f, leg[1]), axis = p.at(f, leg[2]) - hip;
+      const float len2 = glm::dot(axis, axis);
+      if (len2 > 0.0f) knees += (knee - hip) - axis * (glm::dot(knee - hip, axis) / len2);
+      if (leg[3] >= 0) toes += p.at(f, leg[3]) - p.at(f, leg[2]);
+    }
+  knees.y = toes.y = 0.0f;
+  // Knees bent over 1 % of the height on average over the frames (a walk's: several cm) say which
+  // way is ahead.
+  vec3 forward = glm::length(knees) >= 0.01f * p.height * static_cast<float>(p.frames) ? knees : toes;
   if (glm::length(forward) < 1e-3f * p.height) forward = p.at(p.frames - 1, out.pelvis) - p.at(0, out.pelvis), forward.y = 0.0f;
   const vec3 left = glm::cross(vec3(0, 1, 0), forward);
   auto lateral = [&](int joint, int base) {

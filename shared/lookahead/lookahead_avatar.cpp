@@ -432,7 +432,11 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
            (veto == nullptr || !veto->blocks(idle, at));
   };
   static constexpr float kTurns_rad[] = {0.0f, 0.785f, -0.785f, 1.571f, -1.571f, 3.142f};
-  const vec2 back = rotate_ground(vec2(0.0f, -1.0f), here.heading_rad);
+  // Back the way the segment came, where its body just was: behind the facing for most motion,
+  // but ahead of it for a walk backwards (searching behind that, into the wall it backed into,
+  // the avatar froze there: a Bandai backward walk on the doorways, 100 s).
+  const vec2 came = playback_.segment_start.pos_m - here.pos_m;
+  const vec2 back = glm::length(came) > 0.01f ? glm::normalize(came) : rotate_ground(vec2(0.0f, -1.0f), here.heading_rad);
   for (const int idle : {crouching ? crouch_fallback_segment_ : -1, fallback_segment_}) {
     if (idle < 0) continue;
     for (const float turn : kTurns_rad)

@@ -666,20 +666,27 @@ TEST(LookaheadAvatar, WithNoBudgetItFallsBackToIdleAndNeverMoves) {
 // A segment can end where not even idle fits (a capture's dash ends a hand's width from a box
 // its narrower running body clears). The avatar used to hold that segment's last frame for ever;
 // it now stands where idle fits nearest, back along its way. Here a wall's face is put 10 cm
-// inside the standing body's front at the walk's end, with no budget, so the walk has no child.
+// inside the standing body's reach, the way the segment travels, at its end, with no budget, so
+// the segment has no child. The way is the travel's, not the facing's: a walk backwards backs
+// into the wall, and searching behind its facing froze it there (a Bandai walk-back, 100 s).
 void expect_stands_back_where_idle_does_not_fit(const MotionLibrary& lib, int walk) {
   ASSERT_GE(walk, 0);
   const Placement start{vec2(0.0f), 0.0f};  // facing +Z
   const Placement end = motion_library_root_at(lib, walk, lib.graph.segments[walk].num_frames(), start);
   const int idle = find_fallback_segment(lib);
   ASSERT_GE(idle, 0);
-  float front = 0.0f;  // the standing body's reach ahead of its root
-  for (const BodyVolume& v : lib.volumes(idle)) front = std::max(front, v.center_m.y + std::abs(v.half_axis_m.y) + v.radius_m);
-  const vec2 ahead = rotate_ground(vec2(0.0f, 1.0f), end.heading_rad);
+  const vec2 way = glm::normalize(end.pos_m - start.pos_m);
+  ASSERT_GT(std::abs(way.y), 0.9f) << "a walk along +-Z";
+  const vec2 way_local = rotate_ground(way, -end.heading_rad);  // in the standing body's frame
+  float reach = 0.0f;  // the standing body's reach that way from its root
+  for (const BodyVolume& v : lib.volumes(idle))
+    reach = std::max(reach, glm::dot(v.center_m, way_local) + glm::length(v.half_axis_m) + v.radius_m);
   Scene scene;
   scene.bounds = GroundRect{vec2(-20.0f), vec2(20.0f)};
-  const vec2 face = end.pos_m + ahead * (front - 0.10f);
-  scene.boxes.push_back({"wall", BoxKind::kWall, {face.x - 2.0f, 0.0f, face.y}, {face.x + 2.0f, 2.5f, face.y + 1.0f}});
+  const vec2 face = end.pos_m + way * (reach - 0.10f);
+  const float near_z = face.y, far_z = face.y + (way.y > 0.0f ? 1.0f : -1.0f);
+  scene.boxes.push_back({"wall", BoxKind::kWall, {face.x - 2.0f, 0.0f, std::min(near_z, far_z)},
+                         {face.x + 2.0f, 2.5f, std::max(near_z, far_z)}});
   CollisionWorld world;
   std::string error;
   ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
@@ -698,7 +705,7 @@ void expect_stands_back_where_idle_does_not_fit(const MotionLibrary& lib, int wa
   EXPECT_EQ(colliding, 0);
   const vec2 moved = placed.root().pos_m - end.pos_m;
   EXPECT_LT(glm::length(moved), LookaheadAvatar::kStandSearch_m + 0.01f);
-  EXPECT_LT(glm::dot(moved, ahead), 0.0f) << "it stands back along its way";
+  EXPECT_LT(glm::dot(moved, way), 0.0f) << "it stands back along its way";
   EXPECT_NEAR(wrap_angle(placed.root().heading_rad - end.heading_rad), 0.0f, 0.01f);
 }
 
@@ -776,6 +783,22 @@ TEST(LookaheadAvatar, OnAForeignCaptureAnEarlyEndSkipsNoLimbMotion) {
   MotionLibrary lib;
   ASSERT_NO_FATAL_FAILURE(test::foreign_locomotion_library(lib));
   expect_early_ends_skip_no_limb(lib);
+}
+
+// A backward walk of the Bandai capture (inches, dummy root): it backs into the wall.
+TEST(LookaheadAvatar, OnAForeignCaptureABackwardWalkStandsBackTheWayItCame) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_locomotion_library(lib));
+  int backward = -1;
+  for (int s = 0; s < lib.graph.num_segments() && backward < 0; ++s) {
+    const Segment& seg = lib.graph.segments[static_cast<size_t>(s)];
+    const Placement end = motion_library_root_at(lib, s, seg.num_frames(), Placement{});
+    if (seg.name.find("walk-back_normal") != std::string::npos && seg.name.find("derived") == std::string::npos &&
+        end.pos_m.y < -0.3f && std::abs(end.pos_m.x) < 0.1f)
+      backward = s;
+  }
+  expect_stands_back_where_idle_does_not_fit(lib, backward);
 }
 
 TEST(LookaheadAvatar, BrokenInputIsRefusedCountedAndMeansStop) {
