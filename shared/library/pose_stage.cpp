@@ -21,6 +21,15 @@ constexpr vec2 kPatchDirections[] = {vec2(1.0f, 0.0f), vec2(-1.0f, 0.0f), vec2(0
 constexpr float kLandingMargin_m = 0.03f;  // how far a foot may land from where it was expected
 constexpr float kHanging_m = 0.02f;        // a planted part this far over the ground under it is not on it
 constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to its pose's height is down
+constexpr float kKneeCone_rad = 1.05f;     // 60 deg: how far a shown knee may point from the animation's
+constexpr float kClearlyBent_m = 0.02f;    // an animated knee this far off its hip-ankle line has a side
+
+// A knee's offset from the line through its hip and ankle.
+vec3 off_line(vec3 hip, vec3 knee, vec3 ankle) {
+  const vec3 axis = ankle - hip;
+  const float len2 = glm::dot(axis, axis);
+  return len2 > 1e-8f ? (knee - hip) - axis * (glm::dot(knee - hip, axis) / len2) : vec3(0.0f);
+}
 
 // Bollo's inertialization (GDC 2018, "Inertialization: High-Performance Animation Transitions in
 // Gears of War"): an offset that starts at x0 changing at v0 (with no acceleration) and dies out
@@ -737,8 +746,18 @@ void PoseStage::reach(int foot, vec3 offset, Reach how) {
   // its own amount, which stretches or shrinks the shown bones until it has decayed.
   const float upper = glm::length(animated_[knee] - animated_[hip]), lower = glm::length(animated_[ankle] - animated_[knee]);
   if (upper < 1e-4f || lower < 1e-4f) return;
+  // The knee's side: its offset from the hip-ankle line, shown and animated. The shown knee keeps
+  // its side but within kKneeCone_rad of the animated knee's: an inertialized jump offsets the
+  // knee by its own amount, and the shown knee it leaves can point sideways or back (a fallback
+  // after a Bandai backward walk: 90 deg off the idle's knee for 3 frames). The lower body's turn
+  // lag (36 deg at most) stays inside the cone; past it the bend is turned to the cone's edge.
+  const vec3 shown_side = off_line(h, k, a);
+  vec3 own_side = off_line(animated_[hip], animated_[knee], animated_[ankle]);
+  const bool has_side = glm::length(own_side) > kClearlyBent_m;
+  if (has_side) own_side = glm::normalize(own_side);
+  const bool in_cone = !has_side || glm::dot(shown_side, own_side) >= std::cos(kKneeCone_rad) * glm::length(shown_side);
   if (glm::dot(offset, offset) < 1e-10f && std::abs(glm::length(k - h) - upper) < 1e-4f &&
-      std::abs(glm::length(a - k) - lower) < 1e-4f)
+      std::abs(glm::length(a - k) - lower) < 1e-4f && in_cone)
     return;
   vec3 target = a + offset;
   vec3 to = target - h;
@@ -754,13 +773,22 @@ void PoseStage::reach(int foot, vec3 offset, Reach how) {
   const vec3 dir = to / d;
   d = std::clamp(d, shortest, longest);
   target = h + dir * d;
-  // The bend: the animated knee's offset from its own hip-ankle line (the plane the animation
-  // bends the leg in), made square to the new line; the knee stays on that side.
-  const vec3 axis = glm::normalize(a - h);
-  vec3 bend = (k - h) - axis * glm::dot(k - h, axis);
-  bend -= dir * glm::dot(bend, dir);
+  // The bend: the shown knee's side, made square to the new line; the knee stays on that side.
+  vec3 bend = shown_side - dir * glm::dot(shown_side, dir);
   if (glm::dot(bend, bend) < 1e-8f) bend = vec3(0.0f, 0.0f, 1.0f) - dir * dir.z;
   bend = glm::normalize(bend);
+  if (has_side) {
+    vec3 own = own_side - dir * glm::dot(own_side, dir);
+    if (glm::dot(own, own) > 1e-8f) {
+      own = glm::normalize(own);
+      const float c = glm::dot(bend, own);
+      if (c < std::cos(kKneeCone_rad)) {
+        vec3 across = bend - own * c;
+        if (glm::dot(across, across) < 1e-8f) across = glm::cross(dir, own);
+        bend = own * std::cos(kKneeCone_rad) + glm::normalize(across) * std::sin(kKneeCone_rad);
+      }
+    }
+  }
   const float along = (upper * upper - lower * lower + d * d) / (2.0f * d);
   const float out = std::sqrt(std::max(0.0f, upper * upper - along * along));
   const vec3 moved = target - a;

@@ -50,7 +50,8 @@
 //     the ground position it had when it was planted (its height stays the clip's over the ground
 //     under it, 4.), through root steering, blends and the
 //     decaying offsets above; the leg reaches it by two-bone IK (hip, knee, ankle: bone lengths
-//     kept, the knee bent the way the animation bends it, never fully straight), and the foot
+//     kept, the knee bent the way the animation bends it, never fully straight; an inertialized
+//     knee kept within 60 deg of the played knee's side), and the foot
 //     below the ankle moves with the ankle. When the body has turned or moved so far over a
 //     planted foot that it is more than `max_lock_offset_m` from where the clip has it (turning on
 //     the spot by root steering), the foot steps there: over `release_s`, lifted along a low arc

@@ -817,6 +817,40 @@ TEST(PoseStage, AnInertializedJumpKeepsTheLegsBones) {
   EXPECT_NEAR(rest.upper, leg(stage.animated(), kCanonLeftUpLeg).upper, 1e-3f);
 }
 
+// A jump whose new pose faces another way (a fallback's stand turned, a correction) leaves the
+// shown knees where the old pose had them while the offset dies out; a planted leg reached from
+// there kept that knee's side, which may point sideways or back from the new pose's knee (a
+// fallback after a Bandai backward walk: 90 deg off for 3 frames, a limit violation). Shown
+// through the stage, a clearly bent knee stays near the played knee's side (60 deg in the leg's
+// reach; the foot's hold after it moves the leg a little more: 68 measured, 168 before, knees
+// bent backwards). Here a crouched stand (knees bent well forward) jumps to itself turned 150 deg.
+TEST(PoseStage, AnInertializedJumpShowsNoKneeTurnedFarFromThePlayedOnes) {
+  const MotionLibrary& lib = library();
+  const int crouch = lib.graph.find_segment("crouch_idle");
+  ASSERT_GE(crouch, 0);
+  const auto side = [](std::span<const vec3> p, int hip) {
+    const vec3 axis = p[hip + 2] - p[hip], k = p[hip + 1] - p[hip];
+    return k - axis * (glm::dot(k, axis) / glm::dot(axis, axis));
+  };
+  PoseStage stage(lib);
+  PlaybackState s{crouch, 0, Placement{}, -1};
+  stage.update(s, 0.0f);
+  ASSERT_GT(glm::length(side(stage.animated(), kCanonLeftUpLeg)), 0.05f) << "the crouch bends its knees";
+  s.segment_start = Placement{vec2(0.2f, 0.1f), radians(150.0f)};
+  float worst_deg = 0.0f;
+  for (int f = 1; f < 10; ++f) {
+    s.frame = f;
+    stage.update(s, 1.0f / 30.0f);
+    for (const int hip : {kCanonLeftUpLeg, kCanonRightUpLeg}) {
+      const vec3 played = side(stage.animated(), hip), shown = side(stage.shown(), hip);
+      const float c = glm::dot(played, shown) / (glm::length(played) * glm::length(shown));
+      worst_deg = std::max(worst_deg, degrees(std::acos(std::clamp(c, -1.0f, 1.0f))));
+    }
+  }
+  EXPECT_EQ(stage.discontinuities(), 1);
+  EXPECT_LT(worst_deg, 75.0f);
+}
+
 // The steering's turn (a walking segment's start rotated 18 deg in one frame, as 540 deg/s
 // does) is shown eased: less than that on the frame, all of it a few frames later.
 TEST(PoseStage, TheSteeringTurnIsEased) {
