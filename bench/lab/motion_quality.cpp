@@ -39,12 +39,7 @@ bool leg_violates(std::span<const vec3> shown, std::span<const vec3> animated, s
   if (std::abs(bone(shown, hip, knee) - bone(animated, hip, knee)) > kBoneSlack_m ||
       std::abs(bone(shown, knee, ankle) - bone(animated, knee, ankle)) > kBoneSlack_m)
     return true;
-  const auto bend = [&](std::span<const vec3> p) {
-    const vec3 axis = p[ankle] - p[hip];
-    const float len2 = glm::dot(axis, axis);
-    const vec3 k = p[knee] - p[hip];
-    return len2 > 0.0f ? k - axis * (glm::dot(k, axis) / len2) : vec3(0.0f);
-  };
+  const auto bend = [&](std::span<const vec3> p) { return offset_from_line(p[knee], p[hip], p[ankle]); };
   const vec3 a = bend(animated), s = bend(shown);
   // Only a clearly bent animated knee has a side to keep (a straight one may flip by noise).
   return glm::length(a) > 0.02f && glm::dot(a, s) < 0.0f;

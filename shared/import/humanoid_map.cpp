@@ -168,9 +168,7 @@ void assign_sides(const Posed& p, Limbs legs, Limbs arms, HumanoidMap& out) {
   vec3 knees(0.0f), toes(0.0f);
   for (const auto& leg : legs)
     for (int f = 0; f < p.frames; ++f) {
-      const vec3 hip = p.at(f, leg[0]), knee = p.at(f, leg[1]), axis = p.at(f, leg[2]) - hip;
-      const float len2 = glm::dot(axis, axis);
-      if (len2 > 0.0f) knees += (knee - hip) - axis * (glm::dot(knee - hip, axis) / len2);
+      knees += offset_from_line(p.at(f, leg[1]), p.at(f, leg[0]), p.at(f, leg[2]));
       if (leg[3] >= 0) toes += p.at(f, leg[3]) - p.at(f, leg[2]);
     }
   knees.y = toes.y = 0.0f;

@@ -24,13 +24,6 @@ constexpr float kLanded_m = 0.01f;         // an inertialized foot this close to
 constexpr float kKneeCone_rad = 1.05f;     // 60 deg: how far a shown knee may point from the animation's
 constexpr float kClearlyBent_m = 0.02f;    // an animated knee this far off its hip-ankle line has a side
 
-// A knee's offset from the line through its hip and ankle.
-vec3 off_line(vec3 hip, vec3 knee, vec3 ankle) {
-  const vec3 axis = ankle - hip;
-  const float len2 = glm::dot(axis, axis);
-  return len2 > 1e-8f ? (knee - hip) - axis * (glm::dot(knee - hip, axis) / len2) : vec3(0.0f);
-}
-
 // Bollo's inertialization (GDC 2018, "Inertialization: High-Performance Animation Transitions in
 // Gears of War"): an offset that starts at x0 changing at v0 (with no acceleration) and dies out
 // at T with its rate and acceleration (a quintic); at(t) and rate_at(t), t into it.
@@ -751,8 +744,8 @@ void PoseStage::reach(int foot, vec3 offset, Reach how) {
   // knee by its own amount, and the shown knee it leaves can point sideways or back (a fallback
   // after a Bandai backward walk: 90 deg off the idle's knee for 3 frames). The lower body's turn
   // lag (36 deg at most) stays inside the cone; past it the bend is turned to the cone's edge.
-  const vec3 shown_side = off_line(h, k, a);
-  vec3 own_side = off_line(animated_[hip], animated_[knee], animated_[ankle]);
+  const vec3 shown_side = offset_from_line(k, h, a);
+  vec3 own_side = offset_from_line(animated_[knee], animated_[hip], animated_[ankle]);
   const bool has_side = glm::length(own_side) > kClearlyBent_m;
   if (has_side) own_side = glm::normalize(own_side);
   const bool in_cone = !has_side || glm::dot(shown_side, own_side) >= std::cos(kKneeCone_rad) * glm::length(shown_side);

@@ -35,6 +35,14 @@ inline vec2 rotate_ground(vec2 v, float heading_rad) {
 }
 
 inline vec2 ground(vec3 p) { return {p.x, p.z}; }
+
+/// The offset of `p` from the line through `a` and `b` (the part of p - a square to b - a); zero
+/// when a and b coincide. A knee's side: offset_from_line(knee, hip, ankle).
+inline vec3 offset_from_line(vec3 p, vec3 a, vec3 b) {
+  const vec3 axis = b - a;
+  const float len2 = glm::dot(axis, axis);
+  return len2 > 0.0f ? (p - a) - axis * (glm::dot(p - a, axis) / len2) : vec3(0.0f);
+}
 inline vec3 from_ground(vec2 g, float y) { return {g.x, y, g.y}; }
 
 inline quat quat_from_heading(float heading_rad) {

@@ -7,7 +7,6 @@
 #include "anim/canonical_skeleton.hpp"
 #include "anim/fk.hpp"
 #include "anim/root_motion.hpp"
-#include "anim/root_motion.hpp"
 #include "support/bvh_variants.hpp"
 #include "support/test_paths.hpp"
 
@@ -111,6 +110,17 @@ TEST(CaptureVariants, RenamedJointsWithoutSideHintsImportToTheSameBody) {
   expect_same_body(import_canonical(anonymous), base, 0.001f);
 }
 
+// The root's travel along its facing over the whole take, frame by frame, m (negative: backwards).
+float travel_ahead(const BvhDocument& doc) {
+  const Body b = import_canonical(doc);
+  std::vector<Placement> track;
+  extract_root_track(b.clip, find_forward_axis(b.skeleton, b.clip), track);
+  float ahead = 0.0f;
+  for (size_t f = 1; f < track.size(); ++f)
+    ahead += glm::dot(track[f].pos_m - track[f - 1].pos_m, vec2(std::sin(track[f].heading_rad), std::cos(track[f].heading_rad)));
+  return ahead;
+}
+
 // Which side is left comes from the way the body faces, and that from the knees (they bend
 // forward): toes alone read the Bandai dash_masculinity take backwards (its feet, kicked up
 // behind at a sprint, point back more than ahead), so its sides were swapped and it ran 4.5 m/s
@@ -125,18 +135,29 @@ TEST(CaptureVariants, EveryTakeFacesTheWayItTravels) {
     BvhDocument doc;
     std::string error;
     ASSERT_TRUE(bvh_load(entry.path(), doc, error)) << error;
-    const Body b = import_canonical(doc);
-    std::vector<Placement> track;
-    extract_root_track(b.clip, find_forward_axis(b.skeleton, b.clip), track);
-    float ahead = 0.0f;  // the root's travel along its facing, frame by frame
-    for (size_t f = 1; f < track.size(); ++f)
-      ahead += glm::dot(track[f].pos_m - track[f - 1].pos_m,
-                        vec2(std::sin(track[f].heading_rad), std::cos(track[f].heading_rad)));
+    const float ahead = travel_ahead(doc);
     if (name.find("walk-back") != std::string::npos) EXPECT_LT(ahead, -1.0f) << name;
     else EXPECT_GT(ahead, 1.0f) << name;
     ++takes;
   }
   EXPECT_GT(takes, 20);
+}
+
+// The same sprint as another exporter writes it: in inches with no unit hint under a dummy root,
+// and with names that say nothing (sides from the geometry alone): it still runs the way it faces.
+TEST(CaptureVariants, ASprintRescaledReRootedOrUnnamedStillFacesTheWayItRuns) {
+  FORESIGHT_REQUIRE_MOCAP();
+  BvhDocument dash;
+  std::string error;
+  ASSERT_TRUE(bvh_load(test::mocap_dir() / "locomotion/bandai_dataset-1_dash_masculinity_001.bvh", dash, error)) << error;
+  BvhDocument inches = dash;
+  scale_document(inches, 1.0f / 2.54f);
+  insert_parent(inches, 0, "Reference", 0.0f);
+  BvhDocument unnamed = dash;
+  for (size_t j = 0; j < unnamed.joints.size(); ++j) unnamed.joints[j].name = "j" + std::to_string(j * 7 % 23);
+  EXPECT_GT(travel_ahead(dash), 1.0f);
+  EXPECT_GT(travel_ahead(inches), 1.0f);
+  EXPECT_GT(travel_ahead(unnamed), 1.0f);
 }
 
 TEST(CaptureVariants, ExtraDummyRootAndRelativeRootPositionImportToTheSameBody) {
