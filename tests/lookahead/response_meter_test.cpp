@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <vector>
 
 namespace foresight {
@@ -67,6 +69,45 @@ TEST(ResponseMeter, ChangesNotFollowedOrCancelledAreNotCounted) {
   // A small change (20 deg) is not a change: the point is already following it.
   const Walk small = walk(1000, 60, [](int f) { return f < 30 ? vec2(1.0f, 0.0f) : vec2(1.0f, 0.36f); });
   EXPECT_EQ(small.responses.size(), 1u);
+}
+
+// What a turn at a steady rate can be measured at: a point walking +X whose command turns by
+// `change_deg` at frame 30 and which turns towards it at `deg_per_s` from that frame on. The
+// floor of any controller that answers by turning the way it goes (root steering at its rate),
+// whatever its speed: the direction of the last 0.2 s of travel is all the measure reads.
+double steady_turn_response_ms(float change_deg, float deg_per_s) {
+  ResponseMeter meter(kFrame_s);
+  const vec2 before(1.0f, 0.0f);
+  const vec2 after = rotate_ground(before, radians(change_deg));
+  float turned_deg = 0.0f;
+  vec2 p(0.0f);
+  for (int f = 0; f < 90; ++f) {
+    if (f >= 30) turned_deg = std::min(change_deg, turned_deg + deg_per_s * static_cast<float>(kFrame_s));
+    p += rotate_ground(before, radians(turned_deg)) * kSpeed_mps * static_cast<float>(kFrame_s);
+    if (meter.frame(f * kFrame_s, f < 30 ? before : after, p, f) && f >= 30) return meter.last().ms;
+  }
+  return -1.0;
+}
+
+TEST(ResponseMeter, ASteadyTurnIsAnsweredNoSoonerThanItsRateAllows) {
+  for (const float rate : {300.0f, 360.0f, 540.0f, 720.0f, 900.0f})
+    std::printf("%3.0f deg/s: a 45 / 90 / 135 / 180 deg change answered in %.0f / %.0f / %.0f / %.0f ms\n", rate,
+                steady_turn_response_ms(45.0f, rate), steady_turn_response_ms(90.0f, rate),
+                steady_turn_response_ms(135.0f, rate), steady_turn_response_ms(180.0f, rate));
+  // At steering's full rate (540 deg/s) a 90 deg change is answered within the 250 ms aim, a
+  // 135 deg change is not (it needs 720 deg/s), nor a reversal while moving (900).
+  EXPECT_LE(steady_turn_response_ms(90.0f, 540.0f), 250.0);
+  EXPECT_GT(steady_turn_response_ms(135.0f, 540.0f), 250.0);
+  EXPECT_LE(steady_turn_response_ms(135.0f, 720.0f), 250.0);
+  EXPECT_GT(steady_turn_response_ms(180.0f, 720.0f), 250.0);
+  EXPECT_LE(steady_turn_response_ms(180.0f, 900.0f), 250.0);
+  // A 90 deg change needs 360 deg/s: more than a fast clip's pop budget leaves some of its frames
+  // (a captured jog's frames: 200-550 deg/s, docs/MOTION_QUALITY.md).
+  EXPECT_GT(steady_turn_response_ms(90.0f, 300.0f), 250.0);
+  EXPECT_LE(steady_turn_response_ms(90.0f, 360.0f), 250.0);
+  // Faster is never later.
+  for (const float change : {45.0f, 90.0f, 135.0f, 180.0f})
+    EXPECT_LE(steady_turn_response_ms(change, 720.0f), steady_turn_response_ms(change, 360.0f)) << change;
 }
 
 }  // namespace
