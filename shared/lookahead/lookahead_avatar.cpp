@@ -141,7 +141,7 @@ GrowResult LookaheadAvatar::grow(const GrowBudget& budget) { return tree_.grow(b
 
 bool LookaheadAvatar::steer(const ChildVeto* veto) {
   const vec2 command = steering_command();
-  if (glm::dot(command, command) < 1e-8f) return false;
+  if (glm::dot(command, command) < 1e-8f || settle_frames_ > 0) return false;
   const Segment& seg = library_.graph.segments[playback_.segment];
   if (!(seg.tags & kTagLocomotion)) return false;
   const Placement now = root();
@@ -227,6 +227,7 @@ bool LookaheadAvatar::rotate_playing(float turn, const ChildVeto* veto, bool kee
 // kFacingCone_rad of it) from which it can move on (has_way_on), e.g. square to a corridor when
 // the key held points 11 deg into its wall. The target is searched once per stand and command.
 bool LookaheadAvatar::turn_on_spot(const ChildVeto* veto) {
+  if (settle_frames_ > 0) return false;  // a fallback's jump is still being shown (kFallbackSettle_s)
   const vec2 command = steering_command();
   if (glm::dot(command, command) < 1e-8f || !is_standing_loop(playback_.segment)) return false;
   const vec2 dir = glm::normalize(command);
@@ -387,6 +388,7 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
   AvatarStepResult result;
   result.recovery = watch_progress();
   ++playback_.frame;
+  if (settle_frames_ > 0) --settle_frames_;
   int child = -1;
   if (!playback_at_end(library_, playback_)) {
     if (tree_.config().steer_rad_per_s <= 0.0f) return result;
@@ -445,6 +447,7 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
         if (!idle_fits(idle, at)) continue;
         playback_ = {idle, 0, at, -1};
         tree_.reset(idle, at);
+        settle_frames_ = static_cast<int>(std::lround(kFallbackSettle_s * library_.clips[library_.graph.segments[idle].clip].fps));
         return result;
       }
   }

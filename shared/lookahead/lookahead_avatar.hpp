@@ -60,6 +60,11 @@ class LookaheadAvatar {
   // A fallback whose idle does not fit where the segment ends looks this far back (and turned).
   static constexpr float kStandSearch_m = 0.5f;
   static constexpr float kStandSearchStep_m = 0.1f;
+  // After a fallback nothing is turned (on the spot or steered) while the jump to the stand is
+  // still being shown (the pose stage carries it over PoseStageConfig::inertialize_s): turned at
+  // once, the offset still showing the body where the segment ended swung with the turn (into the
+  // pillar that ended the walk; a Bandai backward walk's start steered on its first frame).
+  static constexpr float kFallbackSettle_s = 0.2f;
 
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,
@@ -134,6 +139,7 @@ class LookaheadAvatar {
   int fallback_segment_ = -1;
   int crouch_fallback_segment_ = -1;  ///< Where a crouching avatar falls back to (-1: none).
   int fallbacks_ = 0;
+  int settle_frames_ = 0;  ///< Frames after a fallback that nothing is turned (kFallbackSettle_s).
   int rejected_inputs_ = 0;
   float body_clearance_m_ = 0;  ///< The library's walker (moving_body_clearance_m, less steering room).
   float body_height_m_ = 0;     ///< Its lowest moving body (lowest_moving_body_m).

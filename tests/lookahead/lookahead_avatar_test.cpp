@@ -722,6 +722,85 @@ TEST(LookaheadAvatar, OnAForeignCaptureWhereIdleDoesNotFitItStandsBack) {
   expect_stands_back_where_idle_does_not_fit(lib, walking_segment(lib));
 }
 
+// After a fallback the avatar is not turned (on the spot or steered) until the jump to its stand
+// has been shown (the pose stage carries it over 0.2 s): turned at once, the offset that still
+// shows the body where the walk ended swings with the turn (the pillar field: a toe into the
+// pillar that ended the walk, cut back out in one frame, 179 mm/frame^2; the Bandai capture
+// below: a backward walk's start steered on its first frame, 157 against its threshold of 146).
+// A walk ends at the end of a dead end as narrow as its body, where nothing after it fits; the key
+// then points back: the built-in stand turns on the spot, the capture's walks back; either only
+// after 0.2 s, and nothing shown pops or enters a wall.
+void expect_nothing_turns_after_a_fallback_until_its_jump_is_shown(const MotionLibrary& lib, int walk) {
+  ASSERT_GE(walk, 0);
+  const Placement start{vec2(0.0f), 0.0f};  // facing +Z
+  const Placement end = motion_library_root_at(lib, walk, lib.graph.segments[walk].num_frames(), start);
+  ASSERT_GT(std::abs(glm::normalize(end.pos_m - start.pos_m).y), 0.9f) << "a walk along +-Z";
+  float ahead = -1e9f, side = 0.0f;  // how far ahead of its start and to either side the walk's body reaches
+  for (const BodyVolume& v : lib.volumes(walk)) {
+    const float extent = glm::length(v.half_axis_m) + v.radius_m;
+    ahead = std::max(ahead, (end.pos_m.y > 0.0f ? v.center_m.y : -v.center_m.y) + extent);
+    side = std::max(side, std::abs(v.center_m.x) + extent);
+  }
+  const float face = end.pos_m.y > 0.0f ? ahead + 0.01f : -(ahead + 0.01f), half_width = side + 0.02f;
+  Scene scene;
+  scene.bounds = GroundRect{vec2(-20.0f), vec2(20.0f)};
+  scene.boxes.push_back({"end", BoxKind::kWall, {-2.0f, 0.0f, std::min(face, face + (face > 0.0f ? 1.0f : -1.0f))},
+                         {2.0f, 2.5f, std::max(face, face + (face > 0.0f ? 1.0f : -1.0f))}});
+  const float z0 = std::min(face, 0.0f) - 3.0f, z1 = std::max(face, 0.0f) + 3.0f;
+  scene.boxes.push_back({"left", BoxKind::kWall, {-2.5f, 0.0f, z0}, {-half_width, 2.5f, z1}});
+  scene.boxes.push_back({"right", BoxKind::kWall, {half_width, 0.0f, z0}, {2.5f, 2.5f, z1}});
+  CollisionWorld world;
+  std::string error;
+  ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
+  ASSERT_TRUE(segment_feasible(world, lib.segment_shapes[walk], start)) << "the walk fits the corridor";
+
+  MotionTreeConfig config;
+  config.steer_rad_per_s = radians(540.0f);
+  LookaheadAvatar avatar(lib, world, config, walk, start);
+  PoseStage stage(lib, PoseStageConfig{});
+  stage.set_obstacles(&world);
+  ControlInput back;  // back the way it came (camera yaw 0: camera forward is the world's +Z)
+  back.camera_dir = vec2(0.0f, end.pos_m.y > 0.0f ? -1.0f : 1.0f);
+  const float fps = lib.clips[lib.graph.segments[walk].clip].fps;
+  int fallback_frame = -1, first_turned = -1, shown_colliding = 0;
+  float largest_acceleration = 0.0f;
+  std::vector<vec3> before, now, after;
+  for (int f = 0; f < 120 && (first_turned < 0 || f < first_turned + 15); ++f) {
+    avatar.set_input(fallback_frame >= 0 ? back : ControlInput{});
+    avatar.grow(GrowBudget::expansions(300));
+    const AvatarStepResult step = avatar.step();
+    if (step.fallback && fallback_frame < 0) fallback_frame = f;
+    if (fallback_frame >= 0 && f > fallback_frame && first_turned < 0 && step.steered) first_turned = f;
+    const std::span<const vec3> shown = stage.update(avatar.playback(), f == 0 ? 0.0f : 1.0f / fps);
+    shown_colliding += shown_joints_collide(lib, world, shown);
+    before.swap(now), now.swap(after), after.assign(shown.begin(), shown.end());
+    if (f >= 2)
+      for (size_t j = 0; j < after.size(); ++j)
+        largest_acceleration = std::max(largest_acceleration, glm::length(after[j] - 2.0f * now[j] + before[j]));
+  }
+  ASSERT_GE(fallback_frame, 0) << "the walk must end in a fallback";
+  ASSERT_GE(first_turned, 0) << "it is turned to the key";
+  std::printf("fallback at frame %d, first turned %d frames later; largest shown acceleration %.1f mm/frame^2 (pop threshold %.1f)\n",
+              fallback_frame, first_turned - fallback_frame, 1000.0f * largest_acceleration, 1000.0f * lib.pop_threshold_m);
+  EXPECT_GE(first_turned - fallback_frame, static_cast<int>(std::lround(LookaheadAvatar::kFallbackSettle_s * fps)));
+  EXPECT_LE(first_turned - fallback_frame, static_cast<int>(std::lround(LookaheadAvatar::kFallbackSettle_s * fps)) + 4)
+      << "and then it turns";
+  EXPECT_LT(largest_acceleration, lib.pop_threshold_m) << "what is shown does not pop";
+  EXPECT_EQ(shown_colliding, 0);
+}
+
+TEST(LookaheadAvatar, AfterAFallbackNothingTurnsUntilItsJumpIsShown) {
+  const MotionLibrary& lib = default_library();
+  expect_nothing_turns_after_a_fallback_until_its_jump_is_shown(lib, lib.graph.find_segment("walk_l"));
+}
+
+TEST(LookaheadAvatar, OnAForeignCaptureAfterAFallbackNothingTurnsUntilItsJumpIsShown) {
+  FORESIGHT_REQUIRE_MOCAP();
+  MotionLibrary lib;
+  ASSERT_NO_FATAL_FAILURE(test::foreign_locomotion_library(lib));
+  expect_nothing_turns_after_a_fallback_until_its_jump_is_shown(lib, walking_segment(lib));
+}
+
 // Steering ends a segment early (for a held command) only where what is left of it goes nowhere:
 // the pose shown then is the segment's end pose in place of the frame it would have shown, so
 // no joint of that frame may be more than the 2 cm the root may be from its end. A slow walk's
