@@ -447,7 +447,8 @@ AvatarStepResult LookaheadAvatar::step(const ChildVeto* veto) {
         if (!idle_fits(idle, at)) continue;
         playback_ = {idle, 0, at, -1};
         tree_.reset(idle, at);
-        settle_frames_ = static_cast<int>(std::lround(kFallbackSettle_s * library_.clips[library_.graph.segments[idle].clip].fps));
+        const float fps = library_.clips[library_.graph.segments[idle].clip].fps;
+        settle_frames_ = static_cast<int>(std::lround(kFallbackSettle_s * fps));
         return result;
       }
   }
