@@ -13,6 +13,7 @@
 // ahead for its body, makes it back off (the tree follows an escape direction) and try again
 // (lookahead_avatar.cpp, docs/LOOKAHEAD.md "Recovering").
 #include "library/playback.hpp"
+#include "library/pose_stage.hpp"
 #include "world/control_input.hpp"
 #include "lookahead/motion_tree.hpp"
 
@@ -61,10 +62,10 @@ class LookaheadAvatar {
   static constexpr float kStandSearch_m = 0.5f;
   static constexpr float kStandSearchStep_m = 0.1f;
   // After a fallback nothing is turned (on the spot or steered) while the jump to the stand is
-  // still being shown (the pose stage carries it over PoseStageConfig::inertialize_s): turned at
-  // once, the offset still showing the body where the segment ended swung with the turn (into the
-  // pillar that ended the walk; a Bandai backward walk's start steered on its first frame).
-  static constexpr float kFallbackSettle_s = 0.2f;
+  // still being shown (the pose stage carries it over its inertialize_s): turned at once, the
+  // offset still showing the body where the segment ended swung with the turn (into the pillar
+  // that ended the walk; a Bandai backward walk's start steered on its first frame).
+  static constexpr float kFallbackSettle_s = PoseStageConfig{}.inertialize_s;
 
   /// Spawns in `start_segment` at `start`. The caller checks that this placement is free.
   LookaheadAvatar(const MotionLibrary& library, const CollisionWorld& world, MotionTreeConfig config,

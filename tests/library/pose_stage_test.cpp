@@ -7,6 +7,7 @@
 #include "library/pose_stage.hpp"
 #include "library_checks.hpp"
 #include "foreign_capture.hpp"
+#include "support/shown_motion.hpp"
 #include "world/collision_world.hpp"
 #include "world/terrain.hpp"
 
@@ -341,8 +342,7 @@ float landing_accel(const MotionLibrary& lib, int transition, std::array<int, 2>
   }
   float worst = 0.0f;
   for (auto f = static_cast<size_t>(at - 1); f <= static_cast<size_t>(at + 1); ++f)
-    for (size_t j = 0; j < 3; ++j)
-      worst = std::max(worst, glm::length(shown[f + 1][j] - 2.0f * shown[f][j] + shown[f - 1][j]));
+    worst = std::max(worst, test::largest_joint_acceleration(shown[f - 1], shown[f], shown[f + 1]));
   return worst;
 }
 
@@ -537,8 +537,7 @@ SwitchAccel upper_body_at_switches(const MotionLibrary& lib) {
   const auto peak = [](const std::vector<std::vector<vec3>>& frames, size_t from, size_t to) {
     float a = 0.0f;
     for (size_t f = from; f <= to; ++f)
-      for (size_t j = kCanonSpine; j < kCanonLeftUpLeg; ++j)
-        a = std::max(a, glm::length(frames[f + 1][j] - 2.0f * frames[f][j] + frames[f - 1][j]));
+      a = std::max(a, test::largest_joint_acceleration(frames[f - 1], frames[f], frames[f + 1], kCanonSpine, kCanonLeftUpLeg));
     return a;
   };
   for (int i = 0; i < static_cast<int>(lib.graph.transitions.size()); ++i) {
@@ -758,10 +757,7 @@ TEST(PoseStage, ASwitchWithoutATransitionIsInertializedHoweverSmall) {
   const int idle = lib.graph.find_segment("idle");
   ASSERT_GE(idle, 0);
   const auto largest_acceleration = [](const std::vector<std::vector<vec3>>& frames, size_t at) {
-    float a = 0.0f;
-    for (size_t j = 0; j < frames[at].size(); ++j)
-      a = std::max(a, glm::length(frames[at + 1][j] - 2.0f * frames[at][j] + frames[at - 1][j]));
-    return a;
+    return test::largest_joint_acceleration(frames[at - 1], frames[at], frames[at + 1]);
   };
   for (const char* name : {"walk_l", "walk_r", "walk_slow_l", "walk_slow_r"}) {
     const int walk = lib.graph.find_segment(name);

@@ -11,6 +11,7 @@
 #include "lookahead/scene_path.hpp"
 #include "lookahead_fixture.hpp"
 #include "library/foreign_capture.hpp"
+#include "support/shown_motion.hpp"
 
 #include <gtest/gtest.h>
 
@@ -378,7 +379,6 @@ TEST(LookaheadAvatar, OnASlowForeignSidewaysWalkTheFirstFramesAreSteeredAsSidewa
 int expect_steering_adds_no_pop(const MotionLibrary& lib) {
   MotionTreeConfig config;
   config.steer_rad_per_s = radians(540.0f);
-  const size_t n = static_cast<size_t>(lib.num_joints());
   int checked = 0, steered = 0;
   for (int s = 0; s < lib.graph.num_segments(); ++s) {
     const Segment& seg = lib.graph.segments[static_cast<size_t>(s)];
@@ -405,8 +405,7 @@ int expect_steering_adds_no_pop(const MotionLibrary& lib) {
       float own = 0.0f;
       for (size_t i = k - 1; i <= k + 1; ++i) own = std::max(own, lib.frame_acceleration_at(seg.clip, frames[i]));
       if (own > 0.7f * lib.pop_threshold_m) continue;
-      float largest = 0.0f;
-      for (size_t j = 0; j < n; ++j) largest = std::max(largest, glm::length(shown_poses[k + 1][j] - 2.0f * shown_poses[k][j] + shown_poses[k - 1][j]));
+      const float largest = test::largest_joint_acceleration(shown_poses[k - 1], shown_poses[k], shown_poses[k + 1]);
       EXPECT_LE(largest, lib.pop_threshold_m) << seg.name << " frame " << frames[k] - seg.first_frame << ": own "
                                               << own * 1000.0f << " mm/frame^2";
       ++checked;
@@ -775,9 +774,7 @@ void expect_nothing_turns_after_a_fallback_until_its_jump_is_shown(const MotionL
     const std::span<const vec3> shown = stage.update(avatar.playback(), f == 0 ? 0.0f : 1.0f / fps);
     shown_colliding += shown_joints_collide(lib, world, shown);
     before.swap(now), now.swap(after), after.assign(shown.begin(), shown.end());
-    if (f >= 2)
-      for (size_t j = 0; j < after.size(); ++j)
-        largest_acceleration = std::max(largest_acceleration, glm::length(after[j] - 2.0f * now[j] + before[j]));
+    if (f >= 2) largest_acceleration = std::max(largest_acceleration, test::largest_joint_acceleration(before, now, after));
   }
   ASSERT_GE(fallback_frame, 0) << "the walk must end in a fallback";
   ASSERT_GE(first_turned, 0) << "it is turned to the key";
