@@ -66,13 +66,14 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
   ReplayRun run(lib, world, start, goal.pos_m, goal.radius_m, rc);
   if (!run.ok()) return;
   PoseStageConfig sc;
-  sc.foot_locking = sc.inertialization = sc.turn_easing = sc.orientation_warping = sc.ground_adaptation = c.pose_stage;
+  sc.foot_locking = sc.inertialization = sc.turn_easing = sc.orientation_warping = sc.ground_adaptation =
+      sc.acceleration_guard = c.pose_stage;
   PoseStage stage(lib, sc);
   stage.set_ground(&world.terrain);
   stage.set_obstacles(&world);
   const float dt = static_cast<float>(rc.frame_interval_s);
   const size_t n = static_cast<size_t>(lib.num_joints());
-  std::vector<vec3> before(n), now(n), after(n);
+  std::vector<vec3> before(n), now(n), after(n), unguarded_before(n), unguarded_now(n), unguarded_after(n);
   uint8_t contact_before = 0;
   int64_t frame = 0;
   float own[3] = {0, 0, 0};  // the played clip frames' own accelerations: before, now, after
@@ -88,6 +89,13 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
     before.swap(now);
     now.swap(after);
     std::copy(shown.begin(), shown.end(), after.begin());
+    unguarded_before.swap(unguarded_now);
+    unguarded_now.swap(unguarded_after);
+    std::copy(stage.unguarded().begin(), stage.unguarded().end(), unguarded_after.begin());
+    for (size_t j = 0; j < n; ++j)
+      acc.r.guard_offset_cm_max = std::max(acc.r.guard_offset_cm_max, 100.0 * glm::length(after[j] - unguarded_after[j]));
+    if (frame >= 2 && largest_acceleration(unguarded_before, unguarded_now, unguarded_after) > lib.pop_threshold_m)
+      ++acc.r.unguarded_pops;
     const Segment& seg = lib.graph.segments[played.segment];
     own[0] = own[1], own[1] = own[2], own[2] = lib.frame_acceleration_at(seg.clip, seg.first_frame + played.frame);
     if (const float a = frame >= 2 ? largest_acceleration(before, now, after) : 0.0f; a > lib.pop_threshold_m) {
@@ -121,6 +129,7 @@ void measure_run(const MotionLibrary& lib, const CollisionWorld& world, const Sc
   acc.r.minutes += res.seconds / 60.0;
   acc.r.played_collisions += res.colliding_frames;
   acc.r.discontinuities += stage.discontinuities();
+  acc.r.guarded_frames += stage.guarded_frames();
   for (const double ms : response_ms(res)) acc.response_ms.push_back(ms);
 }
 
@@ -175,6 +184,7 @@ std::vector<MotionQualityResult> measure_motion_quality(const MotionLibrary& lib
     r.ground_error_cm_max = acc.ground_cm.empty() ? 0.0 : *std::max_element(acc.ground_cm.begin(), acc.ground_cm.end());
     r.pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.pops) / r.minutes : 0.0;
     r.added_pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.added_pops) / r.minutes : 0.0;
+    r.unguarded_pops_per_min = r.minutes > 0.0 ? static_cast<double>(r.unguarded_pops) / r.minutes : 0.0;
     r.response_ms_p50 = percentile(acc.response_ms, 50);
     r.response_ms_p95 = percentile(acc.response_ms, 95);
     r.responses = static_cast<int64_t>(acc.response_ms.size());
@@ -214,6 +224,14 @@ std::string motion_quality_text(const std::vector<MotionQualityResult>& results)
     text += line;
   }
   for (const MotionQualityResult& r : results)
+    if (r.guarded_frames > 0) {
+      std::snprintf(line, sizeof line,
+                    "  %s: the acceleration guard held back %lld frames (farthest %.1f cm); before it, %.3f pops/min\n",
+                    r.controller.c_str(), static_cast<long long>(r.guarded_frames), r.guard_offset_cm_max,
+                    r.unguarded_pops_per_min);
+      text += line;
+    }
+  for (const MotionQualityResult& r : results)
     if (r.shown_collisions != r.played_collisions) {
       std::snprintf(line, sizeof line, "  %s: %lld shown frames collide, %lld played\n", r.controller.c_str(),
                     static_cast<long long>(r.shown_collisions), static_cast<long long>(r.played_collisions));
@@ -231,6 +249,9 @@ nlohmann::json motion_quality_json(const MotionQualityResult& r) {
           {"ground_error_cm_max", rounded(r.ground_error_cm_max, 4)},
           {"pops_per_min", rounded(r.pops_per_min, 3)},
           {"added_pops_per_min", rounded(r.added_pops_per_min, 3)},
+          {"unguarded_pops_per_min", rounded(r.unguarded_pops_per_min, 3)},
+          {"guarded_frames", r.guarded_frames},
+          {"guard_offset_cm_max", rounded(r.guard_offset_cm_max, 3)},
           {"limit_violations", r.limit_violations},
           {"response_ms_p50", rounded(r.response_ms_p50, 1)},
           {"response_ms_p95", rounded(r.response_ms_p95, 1)},

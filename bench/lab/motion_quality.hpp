@@ -12,6 +12,8 @@
 //    library's own within-clip 99.9th percentile of the per-frame largest joint acceleration;
 //    added pops: those of them more than 10 % above what the played clip frames have themselves
 //    (a pop steering, a transition's blend or the stage added; the rest are the clips' own);
+//    unguarded pops: the same count on the stage's pose before its acceleration guard
+//    (PoseStage::unguarded(), pose_stage.hpp 6.), with how often and how far the guard moved it;
 //  * limit violations: frames where a leg bone's length differs by more than 1 cm from the
 //    animated one or a knee bends the other way;
 //  * response (ReplayResult::responses: of the root, which the look-ahead steers), and shown
@@ -74,6 +76,10 @@ struct MotionQualityResult {
   double pops_per_min = 0.0;
   int64_t added_pops = 0;            ///< Pops over 10 % above the played clip frames' own (MotionLibrary::frame_acceleration_m).
   double added_pops_per_min = 0.0;
+  int64_t unguarded_pops = 0;        ///< Pops of the stage's pose before its acceleration guard.
+  double unguarded_pops_per_min = 0.0;
+  int64_t guarded_frames = 0;        ///< Frames the guard held a change back on (PoseStage::guarded_frames)...
+  double guard_offset_cm_max = 0.0;  ///< ...and the farthest it showed a joint from the unguarded pose.
   int64_t limit_violations = 0;
   int64_t discontinuities = 0;       ///< Jumps the pose stage inertialized.
   double response_ms_p50 = 0.0;

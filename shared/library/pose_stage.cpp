@@ -138,6 +138,11 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
   landing_.resize(n);
   unturned_.resize(n);
   offset_now_.resize(n);
+  unguarded_.resize(n);
+  guard_from_.resize(n);
+  guard_offset_.assign(n, vec3(0.0f));
+  guard_rate_.assign(n, vec3(0.0f));
+  shown_rate_.resize(n);
   rotations_.resize(n);
   turn_share_.resize(n);
   const bool canonical = library.num_joints() == kCanonJointCount;
@@ -149,7 +154,9 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
 // forgotten, so a jump's decaying offset, a turn's lag and the foot locks went on pulling the
 // next pose towards where the avatar had been (0.8 m: test AfterResetItShowsWhatANewStageWould).
 void PoseStage::reset() {
-  has_previous_ = has_ground_ = has_shown_part_rate_ = false;
+  has_previous_ = has_ground_ = has_shown_part_rate_ = has_shown_rate_ = false;
+  std::fill(guard_offset_.begin(), guard_offset_.end(), vec3(0.0f));
+  std::fill(guard_rate_.begin(), guard_rate_.end(), vec3(0.0f));
   turn_lag_[0] = turn_lag_[1] = TurnLag{};
   offset_left_s_ = 0.0f;
   for (FootLock& f : feet_) f = FootLock{};
@@ -183,6 +190,7 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   if (config_.ground_adaptation && ground_ != nullptr) adapt_to_ground(state, frame_alpha, dt_s);
   if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
+  guard_acceleration(state, dt_s);
   has_shown_part_rate_ = has_previous_ && dt_s > 0.0f;
   if (has_shown_part_rate_ && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot)
@@ -196,6 +204,86 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   previous_state_ = state;
   has_previous_ = true;
   return shown_;
+}
+
+void PoseStage::guard_acceleration(const PlaybackState& state, float dt_s) {
+  std::copy(shown_.begin(), shown_.end(), unguarded_.begin());
+  if (!config_.acceleration_guard || library_.pop_threshold_m <= 0.0f) return;  // (no threshold: nothing to keep within)
+  // A planted foot (ankle, ball, toe end) stays where it is held: the guard neither moves it nor
+  // judges it (its lock's own moves are the lock's: a step's arc, a roll).
+  const bool legs = library_.num_joints() > kCanonRightToeEnd;
+  bool held[2] = {false, false};
+  const auto held_joint = [&](size_t j) {
+    for (int foot = 0; foot < 2; ++foot)
+      if (held[foot] && j >= static_cast<size_t>(foot_heel_joint(foot)) && j <= static_cast<size_t>(foot_heel_joint(foot)) + 2)
+        return true;
+    return false;
+  };
+  if (legs)
+    for (int foot = 0; foot < 2; ++foot) held[foot] = feet_[foot].locked;
+  bool offset = false;
+  for (size_t j = 0; j < shown_.size(); ++j) {
+    vec3& o = guard_offset_[j];
+    vec3& v = guard_rate_[j];
+    if (held_joint(j)) o = v = vec3(0.0f);
+    if (o == vec3(0.0f) && v == vec3(0.0f)) continue;
+    for (int a = 0; a < 3; ++a) spring_towards(o[a], v[a], 0.0f, config_.guard_stiffness, dt_s);
+    if (glm::length(o) < 1e-6f && glm::length(v) < 1e-5f) o = v = vec3(0.0f);
+    shown_[j] += o;
+    offset = true;
+  }
+  const bool judged = has_previous_ && has_shown_rate_ && dt_s > 0.0f;  // (no time: the rates stay the last frame's)
+  // The largest change of velocity a frame may show: the threshold is per clip frame (m per
+  // frame^2), a change of velocity of threshold x fps.
+  const float fps = library_.clips[library_.graph.segments[state.segment].clip].fps;
+  const float allowed = config_.guard_share * library_.pop_threshold_m * fps;
+  const auto largest_change = [&] {
+    float largest = 0.0f;
+    for (size_t j = 0; judged && j < shown_.size(); ++j)
+      if (!held_joint(j)) largest = std::max(largest, glm::length((shown_[j] - previous_[j]) / dt_s - shown_rate_[j]));
+    return largest;
+  };
+  const float largest = largest_change();
+  if (offset || largest > allowed) {
+    // Each joint's change of velocity held back by `share` alike (a bone's length changes by that
+    // share of its ends' difference), then the legs at their bones' lengths again, the knee on
+    // its side: a held foot where it is held, one in the air on a leg no straighter than the
+    // pose's. The knees that solves for are judged too: the least share that keeps every joint
+    // within the bound (bisection) is shown.
+    std::copy(shown_.begin(), shown_.end(), guard_from_.begin());
+    const auto show = [&](float share) {
+      for (size_t j = 0; j < shown_.size(); ++j)
+        shown_[j] = guard_from_[j] -
+                    (judged && !held_joint(j) ? share * ((guard_from_[j] - previous_[j]) - shown_rate_[j] * dt_s) : vec3(0.0f));
+      if (legs)
+        for (int foot = 0; foot < 2; ++foot) reach(foot, vec3(0.0f), held[foot] ? Reach::kFoot : Reach::kFootNoStraighter);
+      return largest_change() <= allowed;
+    };
+    float share = largest > allowed ? 1.0f - allowed / largest : 0.0f;
+    if (!show(share)) {
+      float low = share, high = 1.0f;
+      for (int i = 0; i < 6; ++i) {
+        const float mid = 0.5f * (low + high);
+        (show(mid) ? high : low) = mid;
+      }
+      share = high;
+      show(share);
+    }
+    if (share > 0.0f) ++guarded_frames_;
+    // Where what it holds back would show a joint in a box the played pose is clear of (a hand
+    // going on into a wall the walk turned away from), as much of it as stays clear is shown.
+    std::copy(shown_.begin(), shown_.end(), guard_from_.begin());
+    const float clear = show_clear(
+        [&](float part) {
+          for (size_t j = 0; j < shown_.size(); ++j) shown_[j] = unguarded_[j] + part * (guard_from_[j] - unguarded_[j]);
+        },
+        0, shown_.size() - 1);
+    for (size_t j = 0; j < shown_.size(); ++j) guard_offset_[j] = shown_[j] - unguarded_[j], guard_rate_[j] *= clear;
+  }
+  if (has_previous_ && dt_s > 0.0f) {
+    for (size_t j = 0; j < shown_.size(); ++j) shown_rate_[j] = (shown_[j] - previous_[j]) / dt_s;
+    has_shown_rate_ = true;
+  }
 }
 
 void PoseStage::ease_turn(const PlaybackState& state, float dt_s) {
@@ -488,8 +576,19 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
     if (jumped) {
       // What was shown last frame is where the new pose starts from: the jump is carried as an
       // offset and decays. Foot locks are taken again where the feet now are.
-      for (size_t j = 0; j < n; ++j) offset_[j] = previous_[j] - animated_[j], offset_rate_[j] = vec3(0.0f);
-      offset_left_s_ = config_.inertialize_s;
+      float farthest = 0.0f;
+      for (size_t j = 0; j < n; ++j) {
+        offset_[j] = previous_[j] - animated_[j], offset_rate_[j] = vec3(0.0f);
+        farthest = std::max(farthest, glm::length(offset_[j]));
+      }
+      // The quintic's largest acceleration is 5.77 x its distance / its time^2: a long jump (a
+      // 1 m correction) dies out more slowly, within the acceleration guard's (6.), instead of
+      // being held back by it and overshooting.
+      offset_span_s_ = config_.inertialize_s;
+      if (config_.acceleration_guard && library_.pop_threshold_m > 0.0f)
+        offset_span_s_ = std::max(offset_span_s_, std::sqrt(5.7735f * farthest / (config_.guard_share * library_.pop_threshold_m)) /
+                                                      library_.clips[library_.graph.segments[state.segment].clip].fps);
+      offset_left_s_ = offset_span_s_;
       ++discontinuities_;
       for (FootLock& f : feet_) f = FootLock{};
       has_pose_parts_[0] = has_pose_parts_[1] = false;  // their rates would span the jump
@@ -501,7 +600,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
     }
   }
   offset_left_s_ = std::max(0.0f, offset_left_s_ - dt_s);
-  const float T = config_.inertialize_s;
+  const float T = offset_span_s_;
   if (offset_left_s_ > 0.0f) {
     for (size_t j = 0; j < n; ++j) offset_now_[j] = Inertialized(offset_[j], offset_rate_[j], T).at(T - offset_left_s_);
     // Where an offset carried on would show a joint in a box the played pose is clear of (a
@@ -544,7 +643,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
 // too, the offsets fought the foot locks and the leg IK (Bandai obstacles, 10 seeds: 3.3 -> 5.8
 // pops a minute, ground max 0.4 -> 3.5 cm, 2 shown collisions; measured).
 void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
-  const float T = config_.inertialize_s, left_s = offset_left_s_ - dt_s;
+  const float T = offset_span_s_, left_s = offset_left_s_ - dt_s;
   for (size_t j = 0; j < offset_.size(); ++j) {  // where an offset dying out is now, and its rate
     const Inertialized dying(offset_[j], offset_rate_[j], T);
     offset_[j] = dying.at(T - left_s), offset_rate_[j] = dying.rate_at(T - left_s);
@@ -572,7 +671,7 @@ void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
   add(frame_pose_, state, -1.0f, 3.0f);
   add(sample(state, state.frame + 1), state, 0.0f, -4.0f);
   add(sample(state, state.frame + 2), state, 0.0f, 1.0f);
-  offset_left_s_ = T;
+  offset_left_s_ = offset_span_s_ = config_.inertialize_s;
 }
 
 void PoseStage::lock_foot(int foot, float dt_s) {

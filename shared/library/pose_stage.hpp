@@ -6,7 +6,8 @@
 //     library's clips ever move one: a snapshot correction, a reconnect) or another segment is
 //     entered without a transition however little it moves (a fallback to idle: no blend carries
 //     the pose on), the jump becomes an offset from the new pose that dies out over
-//     `inertialize_s` (a quintic: it starts and lands at rest) instead of a pop. A foot the
+//     `inertialize_s` (a quintic: it starts and lands at rest; a long one, whose quintic would
+//     accelerate faster than the guard (6.) allows, more slowly) instead of a pop. A foot the
 //     new pose plants but the offset still holds in the air (a fallback in mid-stride) is
 //     landing, not planted, until it is within 1 cm of its pose's height. A switch with a
 //     transition (whose blend carries the pose on, not its rate) carries the upper body's rate
@@ -67,6 +68,14 @@
 //     air (let go of, or stepping, from the frame after a step starts) is never shown on a leg
 //     straighter than the pose's: its offset gives way first (near straight, the knee would
 //     swing cm for mm of reach).
+//  6. Acceleration guard. What the steps above leave is shown with no joint's velocity changing
+//     in a frame by more than the library's own clips change theirs 99.9 % of the time
+//     (MotionLibrary::pop_threshold_m, the measure of a pop): a frame that would is shown with
+//     every joint's change scaled down alike to `guard_share` of it, and the part held back
+//     becomes an offset that goes on at the rate it left and dies out through a critically damped
+//     spring (`guard_stiffness`): inertialization of a spike, a few mm for a few frames. What is
+//     left for it is near the threshold (a knee at the start of a walking turn, a toe at a walk's
+//     last frame, a capture's own noisy frame: docs/MOTION_QUALITY.md "An acceleration guard").
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"
@@ -110,6 +119,12 @@ struct PoseStageConfig {
   /// threshold; the clips' own strikes are left as authored (at 36 the stage moved some of them
   /// by a few mm and their balls skated: maze skate p95 0.03 -> 1.4 cm/s, measured).
   float max_landing_accel_mps2 = 54.0f;
+  bool acceleration_guard = true;  ///< 6. above.
+  /// Of MotionLibrary::pop_threshold_m: the largest change of a joint's velocity shown in a frame
+  /// (per clip frame; at other frame rates the same change of velocity, which is what a linearly
+  /// interpolated clip shows).
+  float guard_share = 0.95f;
+  float guard_stiffness = 20.0f;  ///< 1/s: the held-back part's spring (settled in about 0.2 s).
 };
 
 class PoseStage {
@@ -132,12 +147,16 @@ class PoseStage {
   /// The pose as sampled this frame, before the stage.
   std::span<const vec3> animated() const { return animated_; }
   std::span<const vec3> shown() const { return shown_; }
+  /// The pose before the acceleration guard (6. above): the same as shown() where it held nothing back.
+  std::span<const vec3> unguarded() const { return unguarded_; }
   /// This frame's FootContactBit byte: the clip frame's, less the feet the stage is stepping and
   /// those an inertialized jump still holds in the air (landing).
   uint8_t contact() const { return contact_; }
   /// Frames whose sampled pose jumped (or entered a segment without a transition) and were
   /// inertialized, since construction.
   int discontinuities() const { return discontinuities_; }
+  /// Frames the acceleration guard (6. above) held a change back on, since construction.
+  int guarded_frames() const { return guarded_frames_; }
   /// A joint moving farther than this in a frame is a jump (MotionLibrary::max_joint_step_m
   /// with a margin for root steering).
   float jump_m() const { return jump_m_; }
@@ -177,6 +196,7 @@ class PoseStage {
   void reach(int foot, vec3 offset, Reach how = Reach::kFoot);
   void reach_clear(int foot, vec3 offset);
   void push_off(int foot, vec3 ball_at);
+  void guard_acceleration(const PlaybackState& state, float dt_s);
 
   const MotionLibrary& library_;
   PoseStageConfig config_;
@@ -187,6 +207,11 @@ class PoseStage {
   std::vector<vec3> frame_pose_, previous_frame_pose_;  ///< The sampled pose on the frame (no frame_alpha): now, last update.
   std::vector<vec3> unturned_;  ///< shown_ before the turn lag (ease_turn).
   std::vector<vec3> offset_now_;  ///< The inertialized offset this frame (inertialize).
+  std::vector<vec3> unguarded_, guard_offset_, guard_rate_;  ///< guard_acceleration: before it, what it holds back, its rate...
+  std::vector<vec3> guard_from_;  ///< ...and the pose with the held-back part of earlier frames, before this frame's.
+  std::vector<vec3> shown_rate_;  ///< Each shown joint's velocity over the last frame, m/s.
+  bool has_shown_rate_ = false;
+  int guarded_frames_ = 0;
   std::vector<quat> rotations_;
   std::vector<float> turn_share_;  ///< Per joint: how much of the turn lag it shows (3. above).
   bool has_previous_ = false;
@@ -197,6 +222,8 @@ class PoseStage {
   };
   TurnLag turn_lag_[2];  ///< The lower body's (pelvis, legs) and the upper body's (chest up).
   float offset_left_s_ = 0;
+  float offset_span_s_ = 0.2f;  ///< How long the inertialized offset takes to die out (inertialize_s, or longer for a long jump).
+
   uint8_t contact_ = 0;
   int discontinuities_ = 0;
   FootLock feet_[2];
