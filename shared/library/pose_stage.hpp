@@ -71,11 +71,14 @@
 //  6. Acceleration guard. What the steps above leave is shown with no joint's velocity changing
 //     in a frame by more than the library's own clips change theirs 99.9 % of the time
 //     (MotionLibrary::pop_threshold_m, the measure of a pop): a frame that would is shown with
-//     every joint's change scaled down alike to `guard_share` of it, and the part held back
-//     becomes an offset that goes on at the rate it left and dies out through a critically damped
-//     spring (`guard_stiffness`): inertialization of a spike, a few mm for a few frames. What is
-//     left for it is near the threshold (a knee at the start of a walking turn, a toe at a walk's
-//     last frame, a capture's own noisy frame: docs/MOTION_QUALITY.md "An acceleration guard").
+//     every joint's change held back alike to `guard_share` of it (the legs then solved again at
+//     their bones' lengths, and the share raised until their knees are within it too), and the
+//     part held back is an offset that dies out through a critically damped spring
+//     (`guard_stiffness`): inertialization of a spike, a few cm at most for a few frames. A foot
+//     a lock holds is neither moved nor judged; nothing held back is shown in a box the played
+//     pose is clear of (set_obstacles). What is left for it is near the threshold (a knee at the
+//     start of a walking turn, a toe at a walk's last frame, a capture's own noisy frame, a
+//     fallback from a run into idle: docs/MOTION_QUALITY.md "An acceleration guard").
 // Works on world joint positions, which is what the client draws (a bone per parent-child pair)
 // and what is measured; joint rotations are not rewritten. No allocation after the first frame.
 #include "library/motion_library.hpp"

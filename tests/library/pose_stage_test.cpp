@@ -628,13 +628,18 @@ TEST(PoseStage, AFootStartingAStepIsNotPlantedOnThatFrame) {
             0.01f);
 }
 
+// `lib`'s standing loop: its first segment tagged idle, not crouching or fighting (-1: none).
+int standing_idle(const MotionLibrary& lib) {
+  for (int g = 0; g < lib.graph.num_segments(); ++g)
+    if ((lib.graph.segments[static_cast<size_t>(g)].tags & (kTagIdle | kTagCrouch | kTagFight)) == kTagIdle) return g;
+  return -1;
+}
+
 // `lib`'s idle (its standing loop) shown through a stage with only the offsets (no foot locks), with
 // `world`'s boxes (nullptr: none): frame 0 where it stands, then from frame 1 on a metre sideways
 // (a jump, as a fallback or a correction is), to frame 11. Calls `at` with the stage each frame.
 void play_jumped_idle(const MotionLibrary& lib, const CollisionWorld* world, const FrameCheck& at) {
-  int idle = -1;
-  for (int g = 0; g < lib.graph.num_segments() && idle < 0; ++g)
-    if ((lib.graph.segments[static_cast<size_t>(g)].tags & (kTagIdle | kTagCrouch | kTagFight)) == kTagIdle) idle = g;
+  const int idle = standing_idle(lib);
   ASSERT_GE(idle, 0) << "the library has an idle";
   PoseStageConfig config;
   config.foot_locking = false;  // the offsets alone
@@ -654,9 +659,7 @@ void play_jumped_idle(const MotionLibrary& lib, const CollisionWorld* world, con
 // at once at `step_m` a frame (a change of velocity no clip frame has, less than a jump), to frame
 // 35. Calls `at` with the stage each frame.
 void play_set_off(const MotionLibrary& lib, float step_m, bool guard, const CollisionWorld* world, const FrameCheck& at) {
-  int idle = -1;
-  for (int g = 0; g < lib.graph.num_segments() && idle < 0; ++g)
-    if ((lib.graph.segments[static_cast<size_t>(g)].tags & (kTagIdle | kTagCrouch | kTagFight)) == kTagIdle) idle = g;
+  const int idle = standing_idle(lib);
   ASSERT_GE(idle, 0) << "the library has an idle";
   PoseStageConfig config;
   config.foot_locking = false;
@@ -773,7 +776,8 @@ TEST(PoseStage, AJumpIsInertializedNotShown) {
     if (f >= 2) {
       EXPECT_GE(shown[0].x, previous_x - 1e-4f) << "moving over, never back";
       // The offset dies out as a quintic (its rate and acceleration start and end at 0): its
-      // fastest frame moves 1.875 x 1 m / 6 frames, 0.31 m.
+      // fastest frame moves 1.875 x 1 m / 6 frames, 0.31 m (a 1 m jump takes a little longer,
+      // 0.24 s, so that its acceleration stays within the guard's: 0.26 m).
       EXPECT_LT(shown[0].x - previous_x, 0.33f) << "in steps, not a jump";
     }
     if (f == 11) {
