@@ -154,7 +154,7 @@ PoseStage::PoseStage(const MotionLibrary& library, PoseStageConfig config)
 // forgotten, so a jump's decaying offset, a turn's lag and the foot locks went on pulling the
 // next pose towards where the avatar had been (0.8 m: test AfterResetItShowsWhatANewStageWould).
 void PoseStage::reset() {
-  has_previous_ = has_ground_ = has_shown_part_rate_ = has_shown_rate_ = false;
+  has_previous_ = has_ground_ = has_shown_rate_ = false;
   std::fill(guard_offset_.begin(), guard_offset_.end(), vec3(0.0f));
   std::fill(guard_rate_.begin(), guard_rate_.end(), vec3(0.0f));
   turn_lag_[0] = turn_lag_[1] = TurnLag{};
@@ -191,13 +191,9 @@ std::span<const vec3> PoseStage::update(const PlaybackState& state, float dt_s, 
   if (config_.foot_locking && library_.num_joints() > kCanonRightToeEnd)
     for (int foot = 0; foot < 2; ++foot) lock_foot(foot, dt_s);
   guard_acceleration(state, dt_s);
-  has_shown_part_rate_ = has_previous_ && dt_s > 0.0f;
-  if (has_shown_part_rate_ && library_.num_joints() > kCanonRightToeEnd)
-    for (int foot = 0; foot < 2; ++foot)
-      for (int part = 0; part < 2; ++part) {
-        const auto j = static_cast<size_t>(part == 0 ? foot_heel_joint(foot) : foot_ball_joint(foot));
-        shown_part_rate_[foot][part] = (ground(shown_[j]) - ground(previous_[j])) / dt_s;
-      }
+  has_shown_rate_ = has_previous_ && dt_s > 0.0f;
+  if (has_shown_rate_)
+    for (size_t j = 0; j < shown_.size(); ++j) shown_rate_[j] = (shown_[j] - previous_[j]) / dt_s;
   previous_ = shown_;
   previous_animated_ = animated_;
   previous_frame_pose_.swap(frame_pose_);
@@ -234,11 +230,10 @@ void PoseStage::guard_acceleration(const PlaybackState& state, float dt_s) {
     shown_[j] += o;
     offset = true;
   }
-  const bool judged = has_previous_ && has_shown_rate_ && dt_s > 0.0f;  // (no time: the rates stay the last frame's)
+  const bool judged = has_shown_rate_ && dt_s > 0.0f;  // the last frame's rates (update() sets them after this)
   // The largest change of velocity a frame may show: the threshold is per clip frame (m per
   // frame^2), a change of velocity of threshold x fps.
-  const float fps = library_.clips[library_.graph.segments[state.segment].clip].fps;
-  const float allowed = config_.guard_share * library_.pop_threshold_m * fps;
+  const float allowed = config_.guard_share * library_.pop_threshold_m * fps(state);
   const auto largest_change = [&] {  // (squared until the end: this runs once per bisection step)
     float largest = 0.0f;
     for (size_t j = 0; judged && j < shown_.size(); ++j)
@@ -284,10 +279,6 @@ void PoseStage::guard_acceleration(const PlaybackState& state, float dt_s) {
         },
         0, shown_.size() - 1);
     for (size_t j = 0; j < shown_.size(); ++j) guard_offset_[j] = shown_[j] - unguarded_[j], guard_rate_[j] *= clear;
-  }
-  if (has_previous_ && dt_s > 0.0f) {
-    for (size_t j = 0; j < shown_.size(); ++j) shown_rate_[j] = (shown_[j] - previous_[j]) / dt_s;
-    has_shown_rate_ = true;
   }
 }
 
@@ -592,7 +583,7 @@ void PoseStage::inertialize(const PlaybackState& state, float dt_s) {
       offset_span_s_ = config_.inertialize_s;
       if (config_.acceleration_guard && library_.pop_threshold_m > 0.0f)
         offset_span_s_ = std::max(offset_span_s_, std::sqrt(5.7735f * farthest / (config_.guard_share * library_.pop_threshold_m)) /
-                                                      library_.clips[library_.graph.segments[state.segment].clip].fps);
+                                                      fps(state));
       offset_left_s_ = offset_span_s_;
       ++discontinuities_;
       for (FootLock& f : feet_) f = FootLock{};
@@ -657,7 +648,7 @@ void PoseStage::carry_switch(const PlaybackState& state, float dt_s) {
   // frames) to its rate, for the joints from the spine up.
   const size_t upper_end = library_.num_joints() == kCanonJointCount ? kCanonLeftUpLeg : kCanonSpine;
   const auto add = [&](const std::vector<vec3>& pose, const PlaybackState& s, float weight, float rate_weight) {
-    const float per_s = rate_weight * 0.5f * library_.clips[library_.graph.segments[s.segment].clip].fps;
+    const float per_s = rate_weight * 0.5f * fps(s);
     for (size_t j = kCanonSpine; j < upper_end; ++j) offset_[j] += weight * pose[j], offset_rate_[j] += per_s * pose[j];
   };
   // The pose of `s` at `frame`, clamped to its segment.
@@ -708,7 +699,7 @@ void PoseStage::lock_foot(int foot, float dt_s) {
     // held stays where it was shown last frame, so the roll does not slide it.
     if (!f.locked) {
       f = FootLock{true, joint, here + let_go_offset(f, f.release_left_s)};
-      touch_down(foot, joint, f.at, dt_s);
+      touch_down(joint, f.at, dt_s);
     }
     else if (f.joint != joint) f = FootLock{true, joint, previous_[static_cast<size_t>(joint)]};
     f.at += vec3(foothold_nudge_[foot].x, 0.0f, foothold_nudge_[foot].y);  // off a step's edge (adapt_to_ground)
@@ -772,10 +763,10 @@ void PoseStage::reach_clear(int foot, vec3 offset) {
 // then a few cm short of the pose's foot, which the leg reaches by IK (and max_lock_offset_m still
 // steps). Slowing the root or the lower body's turn before a landing did the same but cost response
 // or showed in the planted leg (docs/MOTION_QUALITY.md).
-void PoseStage::touch_down(int foot, int joint, vec3& at, float dt_s) const {
-  if (!has_shown_part_rate_ || dt_s <= 0.0f) return;
+void PoseStage::touch_down(int joint, vec3& at, float dt_s) const {
+  if (!has_shown_rate_ || dt_s <= 0.0f) return;
   const vec2 last = ground(previous_[static_cast<size_t>(joint)]);
-  const vec2 step_in = shown_part_rate_[foot][joint == foot_ball_joint(foot) ? 1 : 0] * dt_s;
+  const vec2 step_in = ground(shown_rate_[static_cast<size_t>(joint)]) * dt_s;
   const vec2 step = ground(at) - last;
   const float most = config_.max_landing_accel_mps2 * dt_s * dt_s;  // m a frame
   const vec2 held = last + nearest_in_lens(step, step_in, most);

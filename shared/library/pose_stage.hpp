@@ -188,7 +188,7 @@ class PoseStage {
   bool lowest_ground_near(vec2 p, float& height) const;
   vec2 nudge_onto(vec2 p, float height) const;
   void lock_foot(int foot, float dt_s);
-  void touch_down(int foot, int joint, vec3& at, float dt_s) const;
+  void touch_down(int joint, vec3& at, float dt_s) const;
   vec3 let_go_offset(const FootLock& lock, float left_s) const;
   void let_go_from(FootLock& lock, vec3 offset, vec2 rate) const;
   /// How reach() moves a foot: the ball and toe with the ankle (kFoot); the ankle alone, the
@@ -200,6 +200,8 @@ class PoseStage {
   void reach_clear(int foot, vec3 offset);
   void push_off(int foot, vec3 ball_at);
   void guard_acceleration(const PlaybackState& state, float dt_s);
+  /// The frame rate of the clip `s` plays.
+  float fps(const PlaybackState& s) const { return library_.clips[library_.graph.segments[s.segment].clip].fps; }
 
   const MotionLibrary& library_;
   PoseStageConfig config_;
@@ -212,7 +214,7 @@ class PoseStage {
   std::vector<vec3> offset_now_;  ///< The inertialized offset this frame (inertialize).
   std::vector<vec3> unguarded_, guard_offset_, guard_rate_;  ///< guard_acceleration: before it, what it holds back, its rate...
   std::vector<vec3> guard_from_;  ///< ...and the pose with the held-back part of earlier frames, before this frame's.
-  std::vector<vec3> shown_rate_;  ///< Each shown joint's velocity over the last frame, m/s.
+  std::vector<vec3> shown_rate_;  ///< Each shown joint's velocity over the last frame, m/s (touch_down, the guard).
   bool has_shown_rate_ = false;
   int guarded_frames_ = 0;
   std::vector<quat> rotations_;
@@ -232,8 +234,6 @@ class PoseStage {
   FootLock feet_[2];
   vec2 pose_parts_[2][2] = {};  ///< Each foot's heel and ball on the ground before the locks (lock_foot).
   bool has_pose_parts_[2] = {false, false};
-  vec2 shown_part_rate_[2][2] = {};  ///< Each foot's heel and ball as shown last frame: m/s, ground plane.
-  bool has_shown_part_rate_ = false;
   const Terrain* ground_ = nullptr;
   const CollisionWorld* obstacles_ = nullptr;
   bool has_ground_ = false;  ///< The ground heights below have been taken.

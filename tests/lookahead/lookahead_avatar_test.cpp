@@ -662,6 +662,13 @@ TEST(LookaheadAvatar, WithNoBudgetItFallsBackToIdleAndNeverMoves) {
   EXPECT_EQ(avatar.playback().segment, avatar.fallback_segment());
 }
 
+// A wall 4 m wide (x within 2 m of `x`) and 1 m thick across the Z axis, its face at `face_z` and
+// the rest of it beyond, the way `way` (+1 or -1) points.
+void add_wall_across_z(Scene& scene, const char* name, float x, float face_z, float way) {
+  scene.boxes.push_back({name, BoxKind::kWall, {x - 2.0f, 0.0f, std::min(face_z, face_z + way)},
+                         {x + 2.0f, 2.5f, std::max(face_z, face_z + way)}});
+}
+
 // A segment can end where not even idle fits (a capture's dash ends a hand's width from a box
 // its narrower running body clears). The avatar used to hold that segment's last frame for ever;
 // it now stands where idle fits nearest, back along its way. Here a wall's face is put 10 cm
@@ -683,9 +690,7 @@ void expect_stands_back_where_idle_does_not_fit(const MotionLibrary& lib, int wa
   Scene scene;
   scene.bounds = GroundRect{vec2(-20.0f), vec2(20.0f)};
   const vec2 face = end.pos_m + way * (reach - 0.10f);
-  const float near_z = face.y, far_z = face.y + (way.y > 0.0f ? 1.0f : -1.0f);
-  scene.boxes.push_back({"wall", BoxKind::kWall, {face.x - 2.0f, 0.0f, std::min(near_z, far_z)},
-                         {face.x + 2.0f, 2.5f, std::max(near_z, far_z)}});
+  add_wall_across_z(scene, "wall", face.x, face.y, way.y > 0.0f ? 1.0f : -1.0f);
   CollisionWorld world;
   std::string error;
   ASSERT_TRUE(collision_world_build(scene, world, error)) << error;
@@ -744,8 +749,7 @@ void expect_nothing_turns_after_a_fallback_until_its_jump_is_shown(const MotionL
   const float face = way * (ahead + 0.01f), half_width = side + 0.02f;
   Scene scene;
   scene.bounds = GroundRect{vec2(-20.0f), vec2(20.0f)};
-  scene.boxes.push_back({"end", BoxKind::kWall, {-2.0f, 0.0f, std::min(face, face + way)},
-                         {2.0f, 2.5f, std::max(face, face + way)}});
+  add_wall_across_z(scene, "end", 0.0f, face, way);
   const float z0 = std::min(face, 0.0f) - 3.0f, z1 = std::max(face, 0.0f) + 3.0f;
   scene.boxes.push_back({"left", BoxKind::kWall, {-2.5f, 0.0f, z0}, {-half_width, 2.5f, z1}});
   scene.boxes.push_back({"right", BoxKind::kWall, {half_width, 0.0f, z0}, {2.5f, 2.5f, z1}});
